@@ -1,0 +1,15 @@
+// Each subcommand registers itself on its parent; main.cpp only wires them.
+#pragma once
+
+namespace CLI {
+class App;
+}
+
+namespace zs {
+
+void add_mesh_info_command(CLI::App& mesh);
+void add_mesh_convert_command(CLI::App& mesh);
+void add_mesh_generate_command(CLI::App& mesh);
+void add_render_command(CLI::App& app);
+
+}  // namespace zs

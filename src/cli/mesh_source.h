@@ -1,0 +1,25 @@
+// The mesh arguments shared by every command that loads a mesh:
+//   MESH [--q Q] [--scalar NAME]; no MESH = the embedded default mesh.
+#pragma once
+
+#include <string>
+
+#include "mesh/io/mesh_io.h"
+
+namespace CLI {
+class App;
+}
+
+namespace zs {
+
+struct MeshSource {
+  std::string path;  // empty = embedded default
+  ReadOptions opt;
+
+  // Registers the positional MESH (required or optional) and --q/--scalar.
+  void add_options(CLI::App& cmd, bool required);
+  TetMesh load() const;
+  std::string display_name() const { return path.empty() ? "<embedded default>" : path; }
+};
+
+}  // namespace zs

@@ -1,0 +1,48 @@
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "image/image.h"
+#include "util/atomic_file.h"
+
+namespace zs {
+
+void write_image(const std::string& path, const Image& img) {
+  AtomicFile out(path);
+  auto file = OIIO::ImageOutput::create(path);
+  if (!file) throw std::runtime_error(path + ": unsupported image format: " + OIIO::geterror());
+  const std::string fmt = file->format_name();
+  const bool is_float = fmt == "openexr" || fmt == "tiff";
+  OIIO::ImageSpec spec(int(img.width), int(img.height), 4, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "Linear");
+  if (!file->open(out.temp_path(), spec)) throw std::runtime_error(path + ": cannot write: " + file->geterror());
+  bool ok;
+  if (is_float) {
+    ok = file->write_image(OIIO::TypeDesc::FLOAT, img.rgba.data());
+  } else {
+    // Same values as the float image, quantized; no gamma (scene spec).
+    std::vector<uint8_t> q(img.rgba.size());
+    for (size_t i = 0; i < q.size(); ++i) q[i] = uint8_t(std::clamp(img.rgba[i], 0.f, 1.f) * 255.f + 0.5f);
+    ok = file->write_image(OIIO::TypeDesc::UINT8, q.data());
+  }
+  if (!ok || !file->close()) throw std::runtime_error(path + ": cannot write: " + file->geterror());
+  out.commit();
+}
+
+Image read_image(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::runtime_error(path + ": cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.nchannels < 1) throw std::runtime_error(path + ": image has no channels");
+  Image img(uint32_t(spec.width), uint32_t(spec.height));
+  std::vector<float> buf(size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buf.data()))
+    throw std::runtime_error(path + ": cannot read image: " + in->geterror());
+  for (size_t p = 0; p < size_t(spec.width) * spec.height; ++p)
+    for (int c = 0; c < 4; ++c)
+      img.rgba[p * 4 + c] = c < spec.nchannels ? buf[p * spec.nchannels + c] : (c == 3 ? 1.f : 0.f);
+  return img;
+}
+
+}  // namespace zs

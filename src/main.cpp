@@ -1,0 +1,31 @@
+// zsweep: one executable, subcommands registered by src/cli/*_cmd.cpp.
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"zsweep: direct volume rendering of tetrahedral meshes (ZSweep lineage)"};
+  app.set_version_flag("--version", "zsweep 0.1.0");
+  app.require_subcommand(1);
+
+  CLI::App* mesh = app.add_subcommand("mesh", "Inspect, convert and generate tet meshes");
+  mesh->require_subcommand(1);
+  zs::add_mesh_info_command(*mesh);
+  zs::add_mesh_convert_command(*mesh);
+  zs::add_mesh_generate_command(*mesh);
+  zs::add_render_command(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    // Readers and writers already name the file (and line); one line, no trace.
+    std::cerr << "zsweep: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

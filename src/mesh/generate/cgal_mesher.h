@@ -1,0 +1,38 @@
+// CGAL Mesh_3: implicit solids and grey-level 3D images to tet meshes. All of
+// Mesh_3 is instantiated in cgal_mesher.cpp alone (it compiles slowly).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "mesh/generate/implicit_shapes.h"
+#include "mesh/tet_mesh.h"
+
+namespace zs {
+
+struct Mesh3Criteria {
+  double facet_angle = 30;        // degrees, lower bound
+  double facet_size = 0.1;        // surface Delaunay ball radius bound
+  double facet_distance = 0.025;  // surface approximation error bound
+  double cell_radius_edge = 2.0;  // tet radius-edge ratio bound
+  double cell_size = 0.1;         // tet circumradius bound
+  uint64_t seed = 1;              // Mesh_3's random choices
+
+  // One-knob defaults: sizes equal to `size`, distance a quarter of it.
+  static Mesh3Criteria from_size(double size) {
+    Mesh3Criteria c;
+    c.facet_size = c.cell_size = size;
+    c.facet_distance = size / 4;
+    return c;
+  }
+};
+
+// Throws std::invalid_argument on bad criteria.
+TetMesh mesh_implicit(const ImplicitShape& shape, const Mesh3Criteria& crit);
+
+// Meshes where the image value is above `iso` (or below, if !inside_above)
+// after CGAL's trilinear interpolation. Throws zs::MeshError naming the file.
+TetMesh mesh_gray_image(const std::string& path, double iso, bool inside_above,
+                        const Mesh3Criteria& crit);
+
+}  // namespace zs

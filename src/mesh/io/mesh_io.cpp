@@ -1,0 +1,79 @@
+#include "mesh/io/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "mesh/io/off_io.h"
+#include "mesh/io/tetgen_io.h"
+#include "mesh/io/vtk_io.h"
+#include "mesh/mesh_error.h"
+#include "util/atomic_file.h"
+
+namespace zs {
+
+namespace fs = std::filesystem;
+
+static std::string lower_ext(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+MeshFormat format_of(const std::string& path, const ReadOptions& opt) {
+  const std::string e = lower_ext(path);
+  if (e == ".off") return MeshFormat::Off;
+  if (e == ".vtu") return MeshFormat::Vtu;
+  if (e == ".vtk") return MeshFormat::VtkLegacy;
+  if (e == ".node" || e == ".ele") return MeshFormat::TetGen;
+  if (!opt.q_path.empty() || e == ".bin" || e == ".xyz" || e == ".x") return MeshFormat::Plot3d;
+  return MeshFormat::Unknown;
+}
+
+TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw MeshError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw MeshError(path, "is a directory, not a mesh file");
+  switch (format_of(path, opt)) {
+    case MeshFormat::Off:
+      return read_off(path);
+    case MeshFormat::Vtu:
+    case MeshFormat::VtkLegacy:
+      return read_vtk(path, opt);
+    case MeshFormat::Plot3d:
+      if (opt.q_path.empty())
+        throw MeshError(path, "PLOT3D grid needs its solution file (--q FILE)");
+      return read_plot3d(path, opt);
+    case MeshFormat::TetGen:
+      return read_tetgen(path);
+    case MeshFormat::Unknown:
+      break;
+  }
+  throw MeshError(path, "unknown mesh format (expected .off, .vtu, .vtk, .node/.ele, or PLOT3D with --q)");
+}
+
+void write_mesh(const std::string& path, const TetMesh& m) {
+  const MeshFormat f = format_of(path);
+  if (f == MeshFormat::TetGen) {
+    // Two files from one base; write both under temporary names, then rename.
+    AtomicFile node(fs::path(path).replace_extension(".node").string());
+    AtomicFile ele(fs::path(path).replace_extension(".ele").string());
+    write_tetgen(node.temp_path(), m);
+    // write_tetgen wrote <tmpbase>.node and <tmpbase>.ele; the ele temp name
+    // differs from AtomicFile's pick, so move it there first.
+    fs::rename(fs::path(node.temp_path()).replace_extension(".ele"), ele.temp_path());
+    ele.commit();
+    node.commit();
+    return;
+  }
+  AtomicFile out(path);
+  switch (f) {
+    case MeshFormat::Off: write_off(out.temp_path(), m); break;
+    case MeshFormat::Vtu: write_vtu(out.temp_path(), m); break;
+    default:
+      throw MeshError(path, "cannot write this format (expected .off, .vtu or .node/.ele)");
+  }
+  out.commit();
+}
+
+}  // namespace zs

@@ -1,0 +1,220 @@
+// Classic tet OFF reader/writer. Hand-written because no library reads this
+// variant; it is line-oriented so every error can name its line.
+#include "mesh/io/off_io.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "mesh/mesh_error.h"
+
+namespace zs {
+
+namespace {
+
+// Walks the text one significant line at a time (skipping blank and '#'
+// lines), splitting each into whitespace-separated tokens.
+class LineCursor {
+ public:
+  LineCursor(std::string_view text, const std::string& name) : text_(text), name_(name) {}
+
+  // Advances to the next significant line; false at end of text.
+  bool next() {
+    while (pos_ < text_.size()) {
+      size_t end = text_.find('\n', pos_);
+      if (end == std::string_view::npos) end = text_.size();
+      std::string_view line = text_.substr(pos_, end - pos_);
+      pos_ = end + 1;
+      ++line_no_;
+      tokenize(line);
+      if (ntok_ > 0 && tok_[0][0] != '#') return true;
+    }
+    ntok_ = 0;
+    return false;
+  }
+
+  size_t line() const { return line_no_; }
+  size_t count() const { return ntok_; }
+  std::string_view token(size_t i) const { return tok_[i]; }
+  size_t bytes_left() const { return pos_ < text_.size() ? text_.size() - pos_ : 0; }
+
+  [[noreturn]] void fail(const std::string& what) const { throw MeshError(name_, line_no_, what); }
+
+ private:
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+  void tokenize(std::string_view line) {
+    ntok_ = 0;
+    size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && is_space(line[i])) ++i;
+      if (i >= line.size()) break;
+      size_t j = i;
+      while (j < line.size() && !is_space(line[j])) ++j;
+      if (ntok_ < kMaxTok) tok_[ntok_] = line.substr(i, j - i);
+      ++ntok_;  // counts past kMaxTok so "too many numbers" is still detected
+      i = j;
+    }
+    if (ntok_ > kMaxTok) ntok_ = kMaxTok + 1;
+  }
+
+  static constexpr size_t kMaxTok = 8;
+  std::string_view text_;
+  const std::string& name_;
+  size_t pos_ = 0, line_no_ = 0;
+  std::string_view tok_[kMaxTok];
+  size_t ntok_ = 0;
+};
+
+std::string quoted(std::string_view s) {
+  if (s.size() > 24) return "'" + std::string(s.substr(0, 24)) + "...'";
+  return "'" + std::string(s) + "'";
+}
+
+double parse_double(const LineCursor& cur, std::string_view tok) {
+  double v = 0.0;
+  const char* b = tok.data();
+  const char* e = b + tok.size();
+  if (b != e && *b == '+') ++b;  // from_chars rejects a leading '+'
+  auto [p, ec] = std::from_chars(b, e, v);
+  // Out-of-range values come back as ERANGE; they are real numbers in the
+  // file (e.g. 1e-400), so keep the clamped result and let validation judge.
+  if ((ec != std::errc() && ec != std::errc::result_out_of_range) || p != e)
+    cur.fail("expected a number, found " + quoted(tok));
+  return v;
+}
+
+// Counts in the header: non-negative integers that fit in 32 bits.
+uint64_t parse_count(const LineCursor& cur, std::string_view tok, const char* what) {
+  if (!tok.empty() && tok[0] == '-') cur.fail(std::string("negative ") + what + " count " + quoted(tok));
+  uint64_t v = 0;
+  auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+  if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == tok.data() + tok.size() &&
+                                               v > std::numeric_limits<uint32_t>::max()))
+    cur.fail(std::string(what) + " count " + quoted(tok) + " is too large");
+  if (ec != std::errc() || p != tok.data() + tok.size())
+    cur.fail(std::string("expected the ") + what + " count, found " + quoted(tok));
+  return v;
+}
+
+uint32_t parse_index(const LineCursor& cur, std::string_view tok, uint64_t n_points) {
+  if (!tok.empty() && tok[0] == '-') cur.fail("negative vertex index " + quoted(tok));
+  uint64_t v = 0;
+  auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+  if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == tok.data() + tok.size() && v >= n_points))
+    cur.fail("vertex index " + std::string(tok) + " out of range (mesh has " +
+             std::to_string(n_points) + " vertices, indices are 0-based)");
+  if (ec != std::errc() || p != tok.data() + tok.size())
+    cur.fail("expected a vertex index, found " + quoted(tok));
+  return static_cast<uint32_t>(v);
+}
+
+}  // namespace
+
+TetMesh parse_off(std::string_view text, const std::string& name) {
+  LineCursor cur(text, name);
+  if (!cur.next()) throw MeshError(name, "empty file: expected 'n_vertices n_tets'");
+
+  // Header: both counts on one line, or one per line.
+  uint64_t n_pts = 0, n_tets = 0;
+  if (cur.count() == 2) {
+    n_pts = parse_count(cur, cur.token(0), "vertex");
+    n_tets = parse_count(cur, cur.token(1), "tet");
+  } else if (cur.count() == 1) {
+    n_pts = parse_count(cur, cur.token(0), "vertex");
+    if (!cur.next()) throw MeshError(name, cur.line(), "file ends before the tet count");
+    if (cur.count() != 1) cur.fail("expected the tet count alone on this line");
+    n_tets = parse_count(cur, cur.token(0), "tet");
+  } else {
+    cur.fail("expected 'n_vertices n_tets' header, found " + std::to_string(cur.count()) + " tokens");
+  }
+
+  // Each vertex line needs at least 8 bytes ("0 0 0 0\n"), each tet line too:
+  // refuse counts the file cannot hold before allocating for them.
+  const uint64_t need = 8 * (n_pts + n_tets);
+  if (need > cur.bytes_left() + 8)
+    cur.fail("header declares " + std::to_string(n_pts) + " vertices and " + std::to_string(n_tets) +
+             " tets, more than the remaining " + std::to_string(cur.bytes_left()) + " bytes can hold");
+
+  TetMesh m;
+  m.points.resize(n_pts);
+  m.scalars.resize(n_pts);
+  m.tets.resize(n_tets);
+  m.scalar_name = "scalar";
+
+  for (uint64_t i = 0; i < n_pts; ++i) {
+    if (!cur.next())
+      throw MeshError(name, cur.line(), "file ends after " + std::to_string(i) + " of " +
+                                            std::to_string(n_pts) + " vertices");
+    if (cur.count() != 4)
+      cur.fail("vertex " + std::to_string(i) + ": expected 'x y z s' (4 numbers), found " +
+               std::to_string(cur.count()) + (cur.count() > 8 ? "+" : "") + " tokens");
+    m.points[i] = {parse_double(cur, cur.token(0)), parse_double(cur, cur.token(1)),
+                   parse_double(cur, cur.token(2))};
+    m.scalars[i] = parse_double(cur, cur.token(3));
+  }
+  for (uint64_t t = 0; t < n_tets; ++t) {
+    if (!cur.next())
+      throw MeshError(name, cur.line(), "file ends after " + std::to_string(t) + " of " +
+                                            std::to_string(n_tets) + " tets");
+    if (cur.count() != 4)
+      cur.fail("tet " + std::to_string(t) + ": expected 4 vertex indices, found " +
+               std::to_string(cur.count()) + (cur.count() > 8 ? "+" : "") + " tokens");
+    for (int k = 0; k < 4; ++k) m.tets[t][k] = parse_index(cur, cur.token(k), n_pts);
+  }
+  if (cur.next()) cur.fail("unexpected data after the last tet (header declares " + std::to_string(n_tets) + " tets)");
+  return m;
+}
+
+TetMesh read_off(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw MeshError(path, std::string("cannot open: ") + std::strerror(errno));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw MeshError(path, "read error");
+  return parse_off(ss.str(), path);
+}
+
+void write_off(const std::string& path, const TetMesh& m) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw MeshError(path, std::string("cannot write: ") + std::strerror(errno));
+  std::string buf;
+  buf.reserve(1 << 16);
+  auto flush = [&] {
+    if (!buf.empty() && std::fwrite(buf.data(), 1, buf.size(), f) != buf.size()) {
+      std::fclose(f);
+      throw MeshError(path, std::string("write failed: ") + std::strerror(errno));
+    }
+    buf.clear();
+  };
+  auto put_num = [&](double v, char sep) {
+    char tmp[40];
+    // Shortest representation that reads back to the same double.
+    auto r = std::to_chars(tmp, tmp + sizeof tmp, v);
+    buf.append(tmp, r.ptr);
+    buf.push_back(sep);
+  };
+  buf += std::to_string(m.points.size()) + "\n" + std::to_string(m.tets.size()) + "\n";
+  for (size_t i = 0; i < m.points.size(); ++i) {
+    put_num(m.points[i].x, ' ');
+    put_num(m.points[i].y, ' ');
+    put_num(m.points[i].z, ' ');
+    put_num(m.has_scalars() ? m.scalars[i] : 0.0, '\n');
+    if (buf.size() > (1 << 16)) flush();
+  }
+  for (const Tet& t : m.tets) {
+    for (int k = 0; k < 4; ++k) {
+      buf += std::to_string(t[k]);
+      buf.push_back(k < 3 ? ' ' : '\n');
+    }
+    if (buf.size() > (1 << 16)) flush();
+  }
+  flush();
+  if (std::fclose(f) != 0) throw MeshError(path, std::string("write failed: ") + std::strerror(errno));
+}
+
+}  // namespace zs

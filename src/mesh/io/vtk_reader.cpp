@@ -1,0 +1,442 @@
+// read_vtk: any dataset VTK can read from .vtu / legacy .vtk -> linear tets.
+//
+// Pipeline: read -> pick one point scalar (cell data averaged onto points if
+// that is all there is) -> reduce higher-order 3-D cells to their corner nodes
+// -> split non-tet 3-D cells with vtkDataSetTriangleFilter -> drop points no
+// tet uses.
+#include <vtkCell.h>
+#include <vtkCellData.h>
+#include <vtkCellDataToPointData.h>
+#include <vtkCellType.h>
+#include <vtkCellTypes.h>
+#include <vtkDataArray.h>
+#include <vtkDataSet.h>
+#include <vtkDataSetTriangleFilter.h>
+#include <vtkGenericCell.h>
+#include <vtkGenericDataObjectReader.h>
+#include <vtkIdList.h>
+#include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
+#include <vtkPoints.h>
+#include <vtkRectilinearGrid.h>
+#include <vtkSmartPointer.h>
+#include <vtkStructuredGrid.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLGenericDataObjectReader.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "mesh/io/vtk_capture.h"
+#include "mesh/io/vtk_io.h"
+#include "mesh/mesh_error.h"
+
+namespace zs {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower_ext(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+// ---------------------------------------------------------------- reading
+
+vtkSmartPointer<vtkDataSet> read_dataset(const std::string& path,
+                                         detail::VtkMessageCapture& capture) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw MeshError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw MeshError(path, "is a directory, not a mesh file");
+  if (!std::ifstream(path, std::ios::binary)) throw MeshError(path, "cannot open file");
+  if (fs::file_size(path, ec) == 0) throw MeshError(path, "empty file");
+
+  // Cheap signature checks first: VTK's own complaint about a random file
+  // echoes its bytes back.
+  std::string head(64, '\0');
+  {
+    std::ifstream f(path, std::ios::binary);
+    f.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<size_t>(f.gcount()));
+  }
+  const bool legacy = lower_ext(path) == ".vtk";
+  std::string lower = head.substr(0, 14);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (legacy && lower != "# vtk datafile")  // VTK compares case-insensitively too
+    throw MeshError(path, "not a legacy VTK file (no '# vtk DataFile' header)");
+  const auto first = head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");  // BOM too
+  if (!legacy && (first == std::string::npos || head[first] != '<'))
+    throw MeshError(path, "not a VTK XML file");
+
+  vtkSmartPointer<vtkDataObject> out;
+  if (legacy) {
+    auto r = vtkSmartPointer<vtkGenericDataObjectReader>::New();
+    capture.watch(r);
+    r->SetFileName(path.c_str());
+    // By default the legacy reader keeps only the first array per attribute
+    // type; we want every array so opt.scalar can name any of them.
+    r->ReadAllScalarsOn();
+    r->ReadAllVectorsOn();
+    r->ReadAllTensorsOn();
+    r->ReadAllNormalsOn();
+    r->ReadAllFieldsOn();
+    r->ReadAllColorScalarsOn();
+    r->ReadAllTCoordsOn();
+    r->Update();
+    out = r->GetOutput();
+  } else {
+    auto r = vtkSmartPointer<vtkXMLGenericDataObjectReader>::New();
+    capture.watch(r);
+    r->SetFileName(path.c_str());
+    r->Update();
+    out = r->GetOutput();
+  }
+  if (capture.has_error()) throw MeshError(path, "VTK reader: " + capture.first_error());
+  // The legacy reader only warns on short data and keeps what it read.
+  const std::string warning = capture.first_warning();
+  if (!warning.empty()) throw MeshError(path, "VTK reader: " + warning);
+  if (!out) throw MeshError(path, "not a readable VTK file");
+  auto* ds = vtkDataSet::SafeDownCast(out);
+  if (!ds)
+    throw MeshError(path, std::string("unsupported VTK data type ") + out->GetClassName() +
+                              " (expected a single dataset)");
+  if (ds->GetNumberOfPoints() == 0 || ds->GetNumberOfCells() == 0)
+    throw MeshError(path, "no cells (empty or unreadable VTK file)");
+  return ds;
+}
+
+// ---------------------------------------------------------------- scalars
+
+bool usable(vtkDataArray* a) {
+  return a && a->GetName() && std::string(a->GetName()) != vtkDataSetAttributes::GhostArrayName() &&
+         a->GetNumberOfComponents() > 0;
+}
+
+std::string array_list(vtkDataSet* ds) {
+  std::string s;
+  auto add = [&](vtkDataSetAttributes* attrs, const char* where) {
+    for (int i = 0; i < attrs->GetNumberOfArrays(); ++i) {
+      vtkDataArray* a = attrs->GetArray(i);
+      if (!usable(a)) continue;
+      s += (s.empty() ? "" : ", ") + std::string(a->GetName()) + " (" + where + ")";
+    }
+  };
+  add(ds->GetPointData(), "point");
+  add(ds->GetCellData(), "cell");
+  return s.empty() ? "none" : s;
+}
+
+vtkDataArray* first_usable(vtkDataSetAttributes* attrs) {
+  if (usable(attrs->GetScalars())) return attrs->GetScalars();
+  for (int i = 0; i < attrs->GetNumberOfArrays(); ++i)
+    if (usable(attrs->GetArray(i))) return attrs->GetArray(i);
+  return nullptr;
+}
+
+// Averages one cell array onto the points (each point: mean of the cells
+// that use it) and returns the resulting point array.
+vtkSmartPointer<vtkDataArray> cell_to_point(vtkDataSet* ds, const std::string& name,
+                                            const std::string& path,
+                                            detail::VtkMessageCapture& capture) {
+  auto c2p = vtkSmartPointer<vtkCellDataToPointData>::New();
+  capture.watch(c2p);
+  c2p->SetInputData(ds);
+  c2p->ProcessAllArraysOff();
+  c2p->AddCellDataArray(name.c_str());
+  c2p->PassCellDataOff();
+  c2p->Update();
+  vtkDataArray* a =
+      c2p->GetOutput() ? c2p->GetOutput()->GetPointData()->GetArray(name.c_str()) : nullptr;
+  if (!a || capture.has_error())
+    throw MeshError(path, "cannot average cell data '" + name + "' onto points" +
+                              (capture.has_error() ? ": " + capture.first_error() : ""));
+  return a;
+}
+
+// Picks the scalar per opt.scalar / defaults, returns one value per point of
+// ds (empty if the file has no data arrays at all).
+std::vector<double> pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const std::string& path,
+                                TetMesh& m, detail::VtkMessageCapture& capture) {
+  vtkDataArray* pa = nullptr;
+  vtkDataArray* ca = nullptr;
+  if (!opt.scalar.empty()) {
+    pa = ds->GetPointData()->GetArray(opt.scalar.c_str());
+    if (!usable(pa)) {
+      pa = nullptr;
+      ca = ds->GetCellData()->GetArray(opt.scalar.c_str());
+      if (!usable(ca))
+        throw MeshError(path, "no array named '" + opt.scalar + "'; available: " + array_list(ds));
+    }
+  } else {
+    pa = first_usable(ds->GetPointData());
+    if (!pa) ca = first_usable(ds->GetCellData());
+  }
+  if (!pa && !ca) {
+    m.notes.push_back("no point or cell data arrays: mesh has no scalar");
+    return {};
+  }
+  vtkSmartPointer<vtkDataArray> arr = pa;
+  if (ca) {
+    arr = cell_to_point(ds, ca->GetName(), path, capture);
+    m.notes.push_back("scalar '" + std::string(ca->GetName()) +
+                      "' is cell data: averaged onto points (vtkCellDataToPointData)");
+  }
+  m.scalar_name = arr->GetName();
+  const int nc = arr->GetNumberOfComponents();
+  if (nc > 1)
+    m.notes.push_back("array '" + m.scalar_name + "' has " + std::to_string(nc) +
+                      " components: using its magnitude");
+  std::vector<double> s(static_cast<size_t>(ds->GetNumberOfPoints()));
+  std::vector<double> tuple(static_cast<size_t>(nc));
+  for (vtkIdType i = 0; i < ds->GetNumberOfPoints(); ++i) {
+    if (nc == 1) {
+      s[static_cast<size_t>(i)] = arr->GetComponent(i, 0);
+      continue;
+    }
+    arr->GetTuple(i, tuple.data());
+    double q = 0;
+    for (double v : tuple) q += v * v;
+    s[static_cast<size_t>(i)] = std::sqrt(q);
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------- cells
+
+// For a higher-order 3-D cell: the linear cell on its corner nodes (which VTK
+// always stores first) and how many corners; {-1, 0} if not higher order.
+std::pair<int, int> corner_cell(int type) {
+  switch (type) {
+    case VTK_QUADRATIC_TETRA:
+    case VTK_HIGHER_ORDER_TETRAHEDRON:
+    case VTK_LAGRANGE_TETRAHEDRON:
+    case VTK_BEZIER_TETRAHEDRON:
+      return {VTK_TETRA, 4};
+    case VTK_QUADRATIC_HEXAHEDRON:
+    case VTK_TRIQUADRATIC_HEXAHEDRON:
+    case VTK_BIQUADRATIC_QUADRATIC_HEXAHEDRON:
+    case VTK_HIGHER_ORDER_HEXAHEDRON:
+    case VTK_LAGRANGE_HEXAHEDRON:
+    case VTK_BEZIER_HEXAHEDRON:
+      return {VTK_HEXAHEDRON, 8};
+    case VTK_QUADRATIC_WEDGE:
+    case VTK_QUADRATIC_LINEAR_WEDGE:
+    case VTK_BIQUADRATIC_QUADRATIC_WEDGE:
+    case VTK_HIGHER_ORDER_WEDGE:
+    case VTK_LAGRANGE_WEDGE:
+    case VTK_BEZIER_WEDGE:
+      return {VTK_WEDGE, 6};
+    case VTK_QUADRATIC_PYRAMID:
+    case VTK_TRIQUADRATIC_PYRAMID:
+    case VTK_HIGHER_ORDER_PYRAMID:
+    case VTK_LAGRANGE_PYRAMID:
+    case VTK_BEZIER_PYRAMID:
+      return {VTK_PYRAMID, 5};
+    default:
+      return {-1, 0};
+  }
+}
+
+// Topological dimension of a cell type, cached (VTK 9.1 has no static query).
+int cell_dimension(int type, std::map<int, int>& cache) {
+  auto it = cache.find(type);
+  if (it != cache.end()) return it->second;
+  int dim = -1;
+  if (type != VTK_EMPTY_CELL) {
+    vtkCell* c = vtkGenericCell::InstantiateCell(type);
+    if (c) {
+      dim = c->GetCellDimension();
+      c->Delete();
+    }
+  }
+  cache[type] = dim;
+  return dim;
+}
+
+// Splits the cells of ug (already linear, sharing ds's point ids) into tets
+// with vtkDataSetTriangleFilter; ids map back through an id array so we do
+// not depend on the filter keeping point order.
+void triangulate(vtkDataSet* in, std::vector<Tet>& tets, const std::string& path,
+                 detail::VtkMessageCapture& capture) {
+  auto ids = vtkSmartPointer<vtkIdTypeArray>::New();
+  ids->SetName("zs_original_id");
+  ids->SetNumberOfValues(in->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < in->GetNumberOfPoints(); ++i) ids->SetValue(i, i);
+  in->GetPointData()->AddArray(ids);
+
+  auto tf = vtkSmartPointer<vtkDataSetTriangleFilter>::New();
+  capture.watch(tf);
+  tf->SetInputData(in);
+  tf->TetrahedraOnlyOn();
+  tf->Update();
+  vtkUnstructuredGrid* out = tf->GetOutput();
+  in->GetPointData()->RemoveArray("zs_original_id");
+  if (capture.has_error() || !out)
+    throw MeshError(path, "cannot split cells into tets: " + capture.first_error());
+  auto* back = vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("zs_original_id"));
+  if (!back) throw MeshError(path, "cannot split cells into tets: point ids lost");
+  auto idlist = vtkSmartPointer<vtkIdList>::New();
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c) {
+    if (out->GetCellType(c) != VTK_TETRA) continue;
+    out->GetCellPoints(c, idlist);
+    Tet t;
+    for (int k = 0; k < 4; ++k) t[k] = static_cast<uint32_t>(back->GetValue(idlist->GetId(k)));
+    tets.push_back(t);
+  }
+}
+
+std::string plural(size_t n, const std::string& what) {
+  return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
+
+// Cells of an unstructured-like dataset -> tets on ds's point ids.
+std::vector<Tet> tets_of_cells(vtkDataSet* ds, TetMesh& m, const std::string& path,
+                               detail::VtkMessageCapture& capture) {
+  std::vector<Tet> tets;
+  std::map<int, int> dim_cache;
+  std::map<int, size_t> reduced, split, dropped;  // by original cell type
+  auto lin = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  auto* ps = vtkPointSet::SafeDownCast(ds);
+  if (ps && ps->GetPoints()) {
+    lin->SetPoints(ps->GetPoints());
+  } else {
+    auto pts = vtkSmartPointer<vtkPoints>::New();
+    pts->SetDataTypeToDouble();
+    pts->SetNumberOfPoints(ds->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < ds->GetNumberOfPoints(); ++i) pts->SetPoint(i, ds->GetPoint(i));
+    lin->SetPoints(pts);
+  }
+  auto* ug = vtkUnstructuredGrid::SafeDownCast(ds);
+  auto idl = vtkSmartPointer<vtkIdList>::New();
+  const vtkIdType npts = ds->GetNumberOfPoints();
+  for (vtkIdType c = 0; c < ds->GetNumberOfCells(); ++c) {
+    const int type = ds->GetCellType(c);
+    if (type == VTK_POLYHEDRON && ug) {
+      ug->GetFaceStream(c, idl);  // polyhedra need their faces, not just points
+      lin->InsertNextCell(VTK_POLYHEDRON, idl);
+      ++split[type];
+      continue;
+    }
+    ds->GetCellPoints(c, idl);
+    for (vtkIdType k = 0; k < idl->GetNumberOfIds(); ++k)
+      if (idl->GetId(k) < 0 || idl->GetId(k) >= npts)
+        throw MeshError(path, "cell " + std::to_string(c) + " references point " +
+                                  std::to_string(idl->GetId(k)) + " of " + std::to_string(npts));
+    auto [lt, nc] = corner_cell(type);
+    int linear = type;
+    if (lt >= 0) {
+      if (idl->GetNumberOfIds() < nc)
+        throw MeshError(path, "cell " + std::to_string(c) + " has too few points");
+      idl->SetNumberOfIds(nc);
+      linear = lt;
+      ++reduced[type];
+    }
+    if (linear == VTK_TETRA) {
+      if (idl->GetNumberOfIds() != 4)
+        throw MeshError(path, "tetra " + std::to_string(c) + " without 4 points");
+      tets.push_back({static_cast<uint32_t>(idl->GetId(0)), static_cast<uint32_t>(idl->GetId(1)),
+                      static_cast<uint32_t>(idl->GetId(2)), static_cast<uint32_t>(idl->GetId(3))});
+      continue;
+    }
+    if (cell_dimension(linear, dim_cache) != 3) {
+      ++dropped[type];
+      continue;
+    }
+    lin->InsertNextCell(linear, idl);
+    ++split[type];
+  }
+  auto cells = [](size_t n, int type) {
+    const char* name = vtkCellTypes::GetClassNameFromTypeId(type);
+    return std::to_string(n) + " " + (name ? name : "unknown") + (n == 1 ? " cell" : " cells") +
+           " (VTK type " + std::to_string(type) + ")";
+  };
+  for (auto [t, n] : reduced) m.notes.push_back(cells(n, t) + " reduced to their corner nodes");
+  for (auto [t, n] : dropped) m.notes.push_back("dropped " + cells(n, t) + ": not 3-D");
+  if (lin->GetNumberOfCells() > 0) {
+    const size_t before = tets.size();
+    triangulate(lin, tets, path, capture);
+    size_t nsplit = 0;
+    for (auto [t, n] : split) nsplit += n;
+    m.notes.push_back("split " + plural(nsplit, "non-tet 3-D cell") + " into " +
+                      plural(tets.size() - before, "tet") + " (vtkDataSetTriangleFilter)");
+  }
+  return tets;
+}
+
+// Image data / structured / rectilinear grids: the filter's structured path
+// splits each hex into 5 tets with alternating parity (conforming).
+std::vector<Tet> tets_of_structured(vtkDataSet* ds, TetMesh& m, const std::string& path,
+                                    detail::VtkMessageCapture& capture) {
+  int dims[3] = {0, 0, 0};
+  if (auto* im = vtkImageData::SafeDownCast(ds))
+    im->GetDimensions(dims);
+  else if (auto* sg = vtkStructuredGrid::SafeDownCast(ds))
+    sg->GetDimensions(dims);
+  else if (auto* rg = vtkRectilinearGrid::SafeDownCast(ds))
+    rg->GetDimensions(dims);
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+    throw MeshError(path, "no 3-D cells (structured grid " + std::to_string(dims[0]) + "x" +
+                              std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + ")");
+  vtkSmartPointer<vtkDataSet> copy;
+  copy.TakeReference(ds->NewInstance());
+  copy->ShallowCopy(ds);  // the id array goes on the copy, not the reader's output
+  std::vector<Tet> tets;
+  triangulate(copy, tets, path, capture);
+  m.notes.push_back(std::string(ds->GetClassName()) + " " + std::to_string(dims[0]) + "x" +
+                    std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + ": " +
+                    plural(static_cast<size_t>(ds->GetNumberOfCells()), "cell") + " split into " +
+                    plural(tets.size(), "tet") + " (vtkDataSetTriangleFilter, not thresholded)");
+  return tets;
+}
+
+}  // namespace
+
+TetMesh read_vtk(const std::string& path, const ReadOptions& opt) {
+  detail::VtkMessageCapture capture;
+  vtkSmartPointer<vtkDataSet> ds = read_dataset(path, capture);
+
+  if (ds->GetNumberOfPoints() >= static_cast<vtkIdType>(UINT32_MAX))
+    throw MeshError(path, "too many points for 32-bit tet indices");
+  TetMesh m;
+  std::vector<double> scal = pick_scalar(ds, opt, path, m, capture);
+  const bool structured = vtkImageData::SafeDownCast(ds) || vtkStructuredGrid::SafeDownCast(ds) ||
+                          vtkRectilinearGrid::SafeDownCast(ds);
+  std::vector<Tet> tets =
+      structured ? tets_of_structured(ds, m, path, capture) : tets_of_cells(ds, m, path, capture);
+  if (tets.empty()) throw MeshError(path, "no 3-D cells to make tets from");
+
+  // Keep only points some tet uses (e.g. quadratic mid-edge nodes go).
+  const auto n = static_cast<size_t>(ds->GetNumberOfPoints());
+  std::vector<uint32_t> remap(n, UINT32_MAX);
+  for (const Tet& t : tets)
+    for (uint32_t v : t) remap[v] = 0;
+  uint32_t next = 0;
+  for (auto& r : remap)
+    if (r == 0) r = next++;
+  m.points.reserve(next);
+  if (!scal.empty()) m.scalars.reserve(next);
+  double p[3];
+  for (size_t i = 0; i < n; ++i) {
+    if (remap[i] == UINT32_MAX) continue;
+    ds->GetPoint(static_cast<vtkIdType>(i), p);
+    m.points.emplace_back(p[0], p[1], p[2]);
+    if (!scal.empty()) m.scalars.push_back(scal[i]);
+  }
+  for (Tet& t : tets)
+    for (uint32_t& v : t) v = remap[v];
+  m.tets = std::move(tets);
+  if (next < n) m.notes.push_back("dropped " + plural(n - next, "point") + " used by no tet");
+  return m;
+}
+
+}  // namespace zs

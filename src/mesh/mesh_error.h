@@ -1,0 +1,18 @@
+// The one exception type readers and writers throw. Its message is the single
+// line the CLI prints: "FILE:LINE: what" (LINE only for text formats).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace zs {
+
+class MeshError : public std::runtime_error {
+ public:
+  MeshError(const std::string& file, const std::string& what)
+      : std::runtime_error(file + ": " + what) {}
+  MeshError(const std::string& file, size_t line, const std::string& what)
+      : std::runtime_error(file + ":" + std::to_string(line) + ": " + what) {}
+};
+
+}  // namespace zs

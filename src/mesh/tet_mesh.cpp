@@ -1,0 +1,32 @@
+#include "mesh/tet_mesh.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace zs {
+
+double signed_volume6(const TetMesh& m, const Tet& t) {
+  const glm::dvec3& a = m.points[t[0]];
+  return glm::dot(m.points[t[1]] - a,
+                  glm::cross(m.points[t[2]] - a, m.points[t[3]] - a));
+}
+
+double Bounds::diagonal() const { return empty ? 0.0 : glm::length(hi - lo); }
+
+Bounds bounds_of(const TetMesh& m) {
+  Bounds b;
+  for (const glm::dvec3& p : m.points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+    if (b.empty) {
+      b.lo = b.hi = p;
+      b.empty = false;
+    } else {
+      b.lo = glm::min(b.lo, p);
+      b.hi = glm::max(b.hi, p);
+    }
+  }
+  return b;
+}
+
+}  // namespace zs

@@ -1,0 +1,43 @@
+// The tetrahedral mesh every renderer starts from: positions, one scalar per
+// vertex, and four vertex indices per tet. Topology lives in topology.h and is
+// built once from this.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace zs {
+
+using Tet = std::array<uint32_t, 4>;
+
+struct TetMesh {
+  std::vector<glm::dvec3> points;
+  std::vector<double> scalars;  // one per point (empty = no scalar)
+  std::vector<Tet> tets;
+
+  std::string scalar_name;      // e.g. "density"; empty when unnamed
+  // Things a reader did to the data that a user should know (cell->point
+  // averaging, hex splitting, merged points...). Printed by `mesh info`.
+  std::vector<std::string> notes;
+
+  size_t num_points() const { return points.size(); }
+  size_t num_tets() const { return tets.size(); }
+  bool has_scalars() const { return !scalars.empty(); }
+};
+
+// Six times the signed volume of tet t: (b-a) . ((c-a) x (d-a)).
+double signed_volume6(const TetMesh& m, const Tet& t);
+
+// Axis-aligned bounds of the points (ignores non-finite coordinates).
+struct Bounds {
+  glm::dvec3 lo{0.0}, hi{0.0};
+  bool empty = true;
+  double diagonal() const;
+};
+Bounds bounds_of(const TetMesh& m);
+
+}  // namespace zs

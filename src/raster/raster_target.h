@@ -1,0 +1,46 @@
+// What a scan strategy writes: the pixels a face covers, with depth and
+// scalar, into plain reusable arrays (no allocation per fragment). The caller
+// decides what a fragment means (a list entry, a depth sample, ...), so every
+// renderer shares the same rasterization.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace zs {
+
+// The part of the image being rendered: columns [x0, x1), rows [y0, y1) of a
+// full image `width` pixels wide (tiles render a sub-rectangle).
+struct Viewport {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+struct ScanCounters {
+  uint64_t pixel_tests = 0;  // inside tests performed (or pixels enumerated)
+  uint64_t pixel_hits = 0;   // fragments produced
+  void operator+=(const ScanCounters& o) {
+    pixel_tests += o.pixel_tests;
+    pixel_hits += o.pixel_hits;
+  }
+};
+
+struct FaceFragments {
+  std::vector<int32_t> x, y;
+  std::vector<double> z, s;
+  size_t size() const { return x.size(); }
+  void clear() {
+    x.clear();
+    y.clear();
+    z.clear();
+    s.clear();
+  }
+  void push(int32_t px, int32_t py, double pz, double ps) {
+    x.push_back(px);
+    y.push_back(py);
+    z.push_back(pz);
+    s.push_back(ps);
+  }
+};
+
+}  // namespace zs

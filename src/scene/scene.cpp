@@ -1,0 +1,264 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+namespace zs {
+
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+struct Ctx {
+  std::string name, base;
+  [[noreturn]] void fail(const std::string& what) const { throw std::runtime_error(name + ": " + what); }
+  std::string resolve(const std::string& p) const {
+    if (p.empty() || fs::path(p).is_absolute() || base.empty()) return p;
+    return (fs::path(base) / p).lexically_normal().string();
+  }
+};
+
+void check_keys(const Ctx& c, const json& obj, const std::string& where, std::initializer_list<const char*> allowed) {
+  if (!obj.is_object()) c.fail(where + " must be an object");
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    bool ok = false;
+    for (const char* a : allowed) ok = ok || it.key() == a;
+    if (!ok) {
+      std::string list;
+      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+      c.fail("unknown key '" + where + "." + it.key() + "' (allowed: " + list + ")");
+    }
+  }
+}
+
+double num(const Ctx& c, const json& v, const std::string& where) {
+  if (!v.is_number()) c.fail(where + " must be a number");
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) c.fail(where + " must be finite");
+  return d;
+}
+
+glm::dvec3 vec3(const Ctx& c, const json& v, const std::string& where) {
+  if (!v.is_array() || v.size() != 3) c.fail(where + " must be [x, y, z]");
+  return {num(c, v[0], where + "[0]"), num(c, v[1], where + "[1]"), num(c, v[2], where + "[2]")};
+}
+
+std::vector<ColorPoint> paraview_points(const Ctx& c, const json& preset, const std::string& where) {
+  const json* p = &preset;
+  if (preset.is_array()) {
+    if (preset.empty()) c.fail(where + ": empty ParaView preset list");
+    p = &preset[0];
+  }
+  if (!p->is_object() || !p->contains("RGBPoints") || !(*p)["RGBPoints"].is_array())
+    c.fail(where + ": not a ParaView colormap preset (no RGBPoints)");
+  const json& pts = (*p)["RGBPoints"];
+  if (pts.size() % 4 != 0 || pts.empty()) c.fail(where + ": RGBPoints must hold s,r,g,b quadruples");
+  std::vector<ColorPoint> out;
+  for (size_t i = 0; i < pts.size(); i += 4)
+    out.push_back({num(c, pts[i], where), num(c, pts[i + 1], where), num(c, pts[i + 2], where),
+                   num(c, pts[i + 3], where)});
+  return out;
+}
+
+std::vector<ColorPoint> colors(const Ctx& c, const json& v) {
+  const std::string where = "transfer_function.color";
+  if (v.is_string()) {
+    // A ParaView colormap preset file (its first preset).
+    const std::string path = c.resolve(v.get<std::string>());
+    std::ifstream in(path);
+    if (!in) c.fail(where + ": cannot open ParaView preset '" + path + "'");
+    json preset;
+    try {
+      preset = json::parse(in);
+    } catch (const json::exception& e) {
+      c.fail(where + ": " + path + ": invalid JSON: " + e.what());
+    }
+    return paraview_points(c, preset, where);
+  }
+  if (v.is_object()) return paraview_points(c, v, where);
+  if (!v.is_array()) c.fail(where + " must be [[s,r,g,b],...] or a ParaView preset");
+  std::vector<ColorPoint> out;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string w = where + "[" + std::to_string(i) + "]";
+    if (!v[i].is_array() || v[i].size() != 4) c.fail(w + " must be [s, r, g, b]");
+    out.push_back({num(c, v[i][0], w), num(c, v[i][1], w), num(c, v[i][2], w), num(c, v[i][3], w)});
+  }
+  return out;
+}
+
+std::vector<OpacityPoint> opacities(const Ctx& c, const json& v) {
+  const std::string where = "transfer_function.opacity";
+  if (!v.is_array()) c.fail(where + " must be [[s,a],...]");
+  std::vector<OpacityPoint> out;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string w = where + "[" + std::to_string(i) + "]";
+    if (!v[i].is_array() || v[i].size() != 2) c.fail(w + " must be [s, a]");
+    out.push_back({num(c, v[i][0], w), num(c, v[i][1], w)});
+  }
+  return out;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& name, const std::string& base_dir) {
+  const Ctx c{name, base_dir};
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // nlohmann reports "... at line L, column C: ..."; keep it one line.
+    c.fail(std::string("invalid JSON: ") + e.what());
+  }
+  check_keys(c, j, "scene", {"mesh", "image", "camera", "transfer_function", "render"});
+  Scene s;
+  RenderSettings& rs = s.settings;
+
+  if (!j.contains("mesh")) c.fail("missing 'mesh'");
+  const json& m = j["mesh"];
+  if (m.is_string()) {
+    s.mesh_path = c.resolve(m.get<std::string>());
+  } else {
+    check_keys(c, m, "mesh", {"path", "scalar", "q"});
+    if (!m.contains("path") || !m["path"].is_string()) c.fail("mesh.path must be a string");
+    s.mesh_path = c.resolve(m["path"].get<std::string>());
+    if (m.contains("scalar")) {
+      if (!m["scalar"].is_string()) c.fail("mesh.scalar must be a string");
+      s.mesh_options.scalar = m["scalar"].get<std::string>();
+    }
+    if (m.contains("q")) {
+      if (!m["q"].is_string()) c.fail("mesh.q must be a string");
+      s.mesh_options.q_path = c.resolve(m["q"].get<std::string>());
+    }
+  }
+
+  if (j.contains("image")) {
+    const json& im = j["image"];
+    check_keys(c, im, "image", {"width", "height", "background"});
+    auto dim = [&](const char* k, uint32_t def) -> uint32_t {
+      if (!im.contains(k)) return def;
+      if (!im[k].is_number_integer() || im[k].get<int64_t>() < 1 || im[k].get<int64_t>() > (int64_t(1) << 20))
+        c.fail(std::string("image.") + k + " must be an integer from 1 to 1048576");
+      return uint32_t(im[k].get<int64_t>());
+    };
+    rs.width = dim("width", rs.width);
+    rs.height = dim("height", rs.height);
+    if (im.contains("background")) {
+      const json& b = im["background"];
+      if (!b.is_array() || b.size() != 4) c.fail("image.background must be [r, g, b, a]");
+      for (int k = 0; k < 4; ++k) rs.background[k] = num(c, b[k], "image.background");
+    }
+  }
+
+  if (j.contains("camera")) {
+    const json& cam = j["camera"];
+    check_keys(c, cam, "camera", {"projection", "eye", "target", "up", "height", "fov_y"});
+    s.has_camera = true;
+    Camera& k = rs.camera;
+    if (cam.contains("projection")) {
+      const std::string p = cam["projection"].is_string() ? cam["projection"].get<std::string>() : "";
+      if (p == "orthographic") k.projection = Projection::Orthographic;
+      else if (p == "perspective") k.projection = Projection::Perspective;
+      else c.fail("camera.projection must be \"orthographic\" or \"perspective\"");
+    }
+    if (cam.contains("eye")) k.eye = vec3(c, cam["eye"], "camera.eye");
+    if (cam.contains("target")) k.target = vec3(c, cam["target"], "camera.target");
+    if (cam.contains("up")) k.up = vec3(c, cam["up"], "camera.up");
+    if (cam.contains("height")) k.height = num(c, cam["height"], "camera.height");
+    if (cam.contains("fov_y")) k.fov_y = num(c, cam["fov_y"], "camera.fov_y");
+    const glm::dvec3 f = k.target - k.eye;
+    if (glm::length(f) == 0) c.fail("camera.eye and camera.target must differ");
+    if (glm::length(glm::cross(f, k.up)) <= 1e-12 * glm::length(f) * glm::length(k.up))
+      c.fail("camera.up must not be parallel to the view direction");
+    if (!(k.height > 0)) c.fail("camera.height must be positive");
+    if (!(k.fov_y > 0 && k.fov_y < 180)) c.fail("camera.fov_y must be in (0, 180) degrees");
+  }
+
+  if (j.contains("transfer_function")) {
+    const json& tf = j["transfer_function"];
+    check_keys(c, tf, "transfer_function", {"color", "opacity", "unit_distance"});
+    if (!tf.contains("color") || !tf.contains("opacity")) c.fail("transfer_function needs 'color' and 'opacity'");
+    const double unit = tf.contains("unit_distance") ? num(c, tf["unit_distance"], "transfer_function.unit_distance") : 1.0;
+    try {
+      rs.tf = TransferFunction(colors(c, tf["color"]), opacities(c, tf["opacity"]), unit);
+    } catch (const std::invalid_argument& e) {
+      c.fail(e.what());
+    }
+    s.has_transfer_function = true;
+  }
+
+  if (j.contains("render")) {
+    const json& r = j["render"];
+    check_keys(c, r, "render", {"scan", "integrator", "early_termination", "max_list_length", "memory_budget_mb"});
+    if (r.contains("scan")) {
+      if (!r["scan"].is_string() || !parse_scan_strategy(r["scan"].get<std::string>(), &rs.scan))
+        c.fail("render.scan must be \"bbox\", \"bconvert\" or \"span\"");
+    }
+    if (r.contains("integrator")) {
+      if (!r["integrator"].is_string() || !parse_integrator(r["integrator"].get<std::string>(), &rs.integrator))
+        c.fail("render.integrator must be \"exact\", \"linear\" or \"preintegrated\"");
+    }
+    if (r.contains("early_termination")) {
+      rs.early_termination = num(c, r["early_termination"], "render.early_termination");
+      if (rs.early_termination < 0 || rs.early_termination > 255) c.fail("render.early_termination must be in [0, 255]");
+    }
+    if (r.contains("max_list_length")) {
+      if (!r["max_list_length"].is_number_unsigned()) c.fail("render.max_list_length must be a non-negative integer");
+      rs.max_list_length = r["max_list_length"].get<uint32_t>();
+    }
+    if (r.contains("memory_budget_mb")) {
+      const double mb = num(c, r["memory_budget_mb"], "render.memory_budget_mb");
+      if (mb <= 0) c.fail("render.memory_budget_mb must be positive");
+      rs.memory_budget_bytes = uint64_t(mb * 1048576.0);
+    }
+  }
+  return s;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), path, fs::path(path).parent_path().string());
+}
+
+Camera auto_camera(const TetMesh& m, Projection projection, uint32_t width, uint32_t height) {
+  const Bounds b = bounds_of(m);
+  Camera cam;
+  cam.projection = projection;
+  const glm::dvec3 c = b.empty ? glm::dvec3(0) : 0.5 * (b.lo + b.hi);
+  const double r = b.empty ? 1.0 : std::max(0.5 * b.diagonal(), 1e-300);
+  const double aspect = double(width) / double(height);
+  cam.target = c;
+  cam.up = {0, 1, 0};
+  cam.height = 2.2 * r / std::min(1.0, aspect);
+  cam.fov_y = 30.0;
+  // Far enough that the bounding sphere fits the vertical (and horizontal) fov.
+  const double half = std::atan(std::tan(cam.fov_y * M_PI / 360.0) * std::min(1.0, aspect));
+  cam.eye = c + glm::dvec3(0, 0, 1.1 * r / std::sin(half));
+  return cam;
+}
+
+TransferFunction default_transfer_function(const TetMesh& m) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (double s : m.scalars)
+    if (std::isfinite(s)) lo = std::min(lo, s), hi = std::max(hi, s);
+  if (!(lo < hi)) {
+    lo = std::isfinite(lo) ? lo : 0.0;
+    hi = lo + 1.0;
+  }
+  const double mid = 0.5 * (lo + hi);
+  return TransferFunction({{lo, 0.23, 0.30, 0.75}, {mid, 0.87, 0.87, 0.87}, {hi, 0.71, 0.02, 0.15}},
+                          {{lo, 0.0}, {hi, 0.6}}, std::max(bounds_of(m).diagonal(), 1e-300) / 50.0);
+}
+
+}  // namespace zs

@@ -1,0 +1,35 @@
+// What a volume render needs besides the mesh: view, image, optics, and the
+// knobs a user trades speed against accuracy with.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "scene/camera.h"
+#include "volume/segment_integrator.h"
+#include "volume/transfer_function.h"
+
+namespace zs {
+
+enum class ScanStrategy { BBox, BConvert, Span };
+const char* to_string(ScanStrategy s);
+bool parse_scan_strategy(const std::string& s, ScanStrategy* out);
+
+struct RenderSettings {
+  uint32_t width = 512, height = 512;
+  double background[4] = {0, 0, 0, 0};  // premultiplied RGBA
+  Camera camera;
+  TransferFunction tf;
+  ScanStrategy scan = ScanStrategy::BBox;
+  Integrator integrator = Integrator::Exact;
+  // Early termination threshold t in 8-bit levels: stop a pixel once its
+  // transmittance is below t/510, which bounds the error by t/2 levels
+  // (seed 000's bound). 0 = off.
+  double early_termination = 0;
+  uint32_t max_list_length = 0;         // 0 = unlimited
+  uint64_t memory_budget_bytes = 0;     // 0 = default (half of physical memory)
+  int threads = 1;
+  bool progress = false;                // progress bar on stderr
+};
+
+}  // namespace zs

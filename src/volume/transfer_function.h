@@ -1,0 +1,54 @@
+// Transfer function: colour and opacity piecewise linear in the scalar,
+// clamped outside their first/last points (scene spec). Both are merged onto
+// one sorted breakpoint list so an integrator can walk the intervals on which
+// colour and opacity are both linear.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace zs {
+
+struct ColorPoint {
+  double s, r, g, b;
+};
+struct OpacityPoint {
+  double s, a;
+};
+
+// Opacity is clamped to this so that extinction -ln(1-a) stays finite.
+constexpr double kMaxOpacity = 1.0 - 1e-6;
+
+class TransferFunction {
+ public:
+  TransferFunction() = default;
+  // Points must be strictly increasing in s (throws std::invalid_argument).
+  TransferFunction(std::vector<ColorPoint> color, std::vector<OpacityPoint> opacity,
+                   double unit_distance = 1.0);
+
+  // Merged breakpoints: every colour and opacity s, sorted, unique. Between
+  // breakpoints k and k+1 (and outside the ends) c and a are linear (const).
+  const std::vector<double>& breakpoints() const { return bs_; }
+  double unit_distance() const { return unit_; }
+
+  std::array<double, 3> color(double s) const;
+  double opacity(double s) const;  // clamped to [0, kMaxOpacity]
+  // Extinction per unit length: -ln(1 - a(s)) / unit_distance.
+  double extinction(double s) const;
+  // Largest opacity over [lo, hi]; 0 means everything in the range is invisible.
+  double max_opacity(double lo, double hi) const;
+  // Index k with breakpoints[k] <= s < breakpoints[k+1]; -1 below the first.
+  int interval(double s) const;
+
+  const std::vector<ColorPoint>& color_points() const { return color_; }
+  const std::vector<OpacityPoint>& opacity_points() const { return opacity_; }
+
+ private:
+  std::vector<ColorPoint> color_;
+  std::vector<OpacityPoint> opacity_;
+  std::vector<double> bs_;
+  double unit_ = 1.0;
+};
+
+}  // namespace zs

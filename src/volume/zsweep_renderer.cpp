@@ -1,0 +1,212 @@
+#include "volume/zsweep_renderer.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "raster/bbox_scan.h"
+#include "raster/screen_triangle.h"
+#include "volume/compositor.h"
+#include "volume/face_classes.h"
+#include "volume/pixel_lists.h"
+#include "volume/vertex_heap.h"
+
+namespace zs {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+uint64_t default_memory_budget() {
+  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? uint64_t(pages) * uint64_t(size) / 2 : (uint64_t(4) << 30);
+}
+
+uint64_t peak_rss_bytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return uint64_t(u.ru_maxrss) * 1024;
+}
+
+Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs, RenderStats* st) {
+  const auto t_start = Clock::now();
+  RenderStats local;
+  RenderStats& S = st ? *st : local;
+  S = RenderStats{};
+  if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
+  if (rs.scan != ScanStrategy::BBox)
+    throw std::runtime_error(std::string("scan strategy '") + to_string(rs.scan) + "' is not implemented yet");
+
+  const View view(rs.camera, rs.width, rs.height);
+  const Viewport vp{0, 0, int(rs.width), int(rs.height)};
+  const uint64_t npix = uint64_t(rs.width) * rs.height;
+
+  // Memory: per-pixel compositing state and list heads first, fragments get the rest.
+  const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
+  S.memory_budget_bytes = budget;
+  const uint64_t per_pixel = 3 * 8 + 8 + 4 + 4 + 4 + 1 /*compositor*/ + 4 * 3 + 1 /*lists*/;
+  const uint64_t fixed = npix * per_pixel + uint64_t(mesh.num_points()) * 40 + topo.num_faces() * 2;
+  if (fixed >= budget)
+    throw std::runtime_error("memory budget of " + std::to_string(budget >> 20) + " MiB cannot hold a " +
+                             std::to_string(rs.width) + "x" + std::to_string(rs.height) + " image (needs about " +
+                             std::to_string((fixed >> 20) + 1) + " MiB before fragments)");
+  const uint64_t max_fragments = (budget - fixed) / sizeof(Fragment);
+
+  // View transform of every vertex.
+  const size_t nv = mesh.num_points();
+  std::vector<ScreenVertex> sv(nv);
+  double zmin = INFINITY;
+  for (uint32_t v = 0; v < nv; ++v) {
+    const ViewPoint p = view.project(mesh.points[v]);
+    sv[v] = {p.x, p.y, p.z, mesh.has_scalars() ? mesh.scalars[v] : 0.0, v};
+    if (p.z > 0) zmin = std::min(zmin, p.z);
+  }
+  // Fragments store depth relative to the nearest vertex, as float: keeps
+  // their precision when the camera is far from the mesh.
+  const double z_origin = std::isfinite(zmin) ? zmin : 0.0;
+  // Only geometry at positive distance is rendered; faces reaching behind this
+  // are not yet clipped (counted in faces_clipped).
+  const double z_near = 0.0;
+
+  FaceClassCounts fc;
+  const std::vector<FaceClass> cls = classify_faces(mesh, topo, rs.tf, view, &fc);
+  S.tets_invisible = fc.tets_invisible;
+  S.tets_degenerate = fc.tets_degenerate;
+  S.faces_culled = fc.faces_culled;
+
+  // Event list: vertices that start at least one face to project.
+  std::vector<uint8_t> projected(topo.num_faces(), 0);
+  std::vector<VertexHeap::Entry> events;
+  for (uint32_t v = 0; v < nv; ++v) {
+    bool any = false;
+    for (uint32_t f : topo.use_set(v))
+      if (cls[f] != FaceClass::Culled) {
+        any = true;
+        break;
+      }
+    if (any && std::isfinite(sv[v].z)) events.push_back({sv[v].z, v});
+  }
+  VertexHeap heap;
+  heap.assign(std::move(events));
+
+  const double et = rs.early_termination > 0 ? rs.early_termination / 510.0 : 0.0;
+  const SegmentIntegrator integ(rs.tf, rs.integrator);
+  Compositor comp(view, vp, integ, et);
+  PixelLists lists(npix, max_fragments);
+  S.ms_setup = ms_since(t_start);
+
+  auto composite_all = [&](float z_limit) {
+    const auto t0 = Clock::now();
+    for (uint32_t p : lists.active()) comp.composite(lists, p, z_limit);
+    lists.compact_active();
+    S.ms_composite += ms_since(t0);
+  };
+
+  FaceFragments frags;
+  double z_target = -INFINITY;
+  while (!heap.empty()) {
+    const VertexHeap::Entry ev = heap.pop();
+    const float z_sweep = float(ev.z - z_origin);
+    if (ev.z > z_target) {
+      // The sweep passed z_target: every face still to come starts at or
+      // after ev.z, so every fragment before ev.z is final. Composite them
+      // and aim at the farthest vertex of this vertex's faces (ZSweep's
+      // z_target), so compositing stays delayed but lists stay short.
+      if (!lists.active().empty()) {
+        ++S.composite_events;
+        composite_all(z_sweep);
+      }
+      z_target = ev.z;
+      for (uint32_t f : topo.use_set(ev.v))
+        for (uint32_t v : topo.faces[f]) z_target = std::max(z_target, sv[v].z);
+    }
+    for (uint32_t f : topo.use_set(ev.v)) {
+      if (projected[f] || cls[f] == FaceClass::Culled) continue;
+      projected[f] = 1;
+      const auto& fv = topo.faces[f];
+      const ScreenVertex tri[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
+      if (tri[0].z <= z_near || tri[1].z <= z_near || tri[2].z <= z_near) {
+        ++S.faces_clipped;
+        continue;
+      }
+      const double min_x = std::min({tri[0].x, tri[1].x, tri[2].x}), max_x = std::max({tri[0].x, tri[1].x, tri[2].x});
+      const double min_y = std::min({tri[0].y, tri[1].y, tri[2].y}), max_y = std::max({tri[0].y, tri[1].y, tri[2].y});
+      if (max_x < vp.x0 - 0.5 || min_x > vp.x1 - 0.5 || max_y < vp.y0 - 0.5 || min_y > vp.y1 - 0.5) {
+        ++S.faces_offscreen;
+        continue;
+      }
+      auto t0 = Clock::now();
+      ScreenTriangle st;
+      const bool ok = setup_triangle(tri, view.perspective(), &st);
+      auto t1 = Clock::now();
+      S.ms_list_generation += std::chrono::duration<double, std::milli>(t1 - t0).count();
+      if (!ok) {
+        ++S.faces_degenerate;
+        continue;
+      }
+      ++S.faces_projected;
+      frags.clear();
+      ScanCounters sc;
+      scan_bbox(st, vp, frags, sc);
+      S.pixel_tests += sc.pixel_tests;
+      S.pixel_hits += sc.pixel_hits;
+      auto t2 = Clock::now();
+      S.ms_scan_convert += std::chrono::duration<double, std::milli>(t2 - t1).count();
+
+      const uint32_t kind = cls[f] == FaceClass::Entry ? kEntry : cls[f] == FaceClass::Exit ? kExit : kInterior;
+      for (size_t k = 0; k < frags.size(); ++k) {
+        const uint32_t p = uint32_t(frags.y[k] - vp.y0) * uint32_t(vp.x1 - vp.x0) + uint32_t(frags.x[k] - vp.x0);
+        if (comp.done(p)) continue;  // early-terminated: nothing behind matters
+        const float z = float(frags.z[k] - z_origin), s = float(frags.s[k]);
+        if (!lists.insert(p, z, s, kind)) {
+          // Pool at its budget: composite everything already final (before
+          // the sweep plane) everywhere, then retry once.
+          ++S.budget_flushes;
+          S.ms_insert += ms_since(t2);
+          composite_all(z_sweep);
+          t2 = Clock::now();
+          if (!lists.insert(p, z, s, kind))
+            throw std::runtime_error("memory budget of " + std::to_string(budget >> 20) +
+                                     " MiB is too small: " + std::to_string(lists.live_fragments()) +
+                                     " fragments must be pending at once in this view");
+        }
+        ++S.fragments;
+        const uint32_t len = lists.length(p);
+        if (len > S.max_list_length) S.max_list_length = len;
+        if (rs.max_list_length && len > rs.max_list_length) {
+          // Force this pixel's final fragments out now.
+          ++S.forced_composites;
+          comp.composite(lists, p, z_sweep);
+        }
+      }
+      S.ms_insert += ms_since(t2);
+    }
+  }
+  composite_all(INFINITY);
+  S.segments = comp.segments();
+  S.early_terminated_pixels = comp.terminated_pixels();
+  S.peak_fragments = lists.peak_fragments();
+
+  // out = I + (1 - alpha)·background, alpha = 1 - T (premultiplied).
+  Image img(rs.width, rs.height);
+  for (uint32_t p = 0; p < npix; ++p) {
+    const double T = comp.transmittance(p);
+    const double* c = comp.rgb(p);
+    float* o = &img.rgba[size_t(p) * 4];
+    for (int k = 0; k < 3; ++k) o[k] = float(c[k] + T * rs.background[k]);
+    o[3] = float((1.0 - T) + T * rs.background[3]);
+    if (T < 1.0) ++S.rendered_pixels;
+  }
+  S.peak_rss_bytes = peak_rss_bytes();
+  S.ms_total = ms_since(t_start);
+  return img;
+}
+
+}  // namespace zs
