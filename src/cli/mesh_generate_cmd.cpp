@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -95,11 +96,11 @@ void add_shape_commands(CLI::App* gen) {
     auto opt = std::make_shared<ShapeMeshOptions>();
     opt->shape = info.name;
     add_common(cmd, *common, "radial");
-    cmd->add_option("--tets", opt->target_tets, "Target tet count (lands within ~20%)")
+    cmd->add_option("--tets", opt->target_tets, "Target tet count (lands within ~10%, at most a few reruns)")
         ->check(CLI::Range(size_t{1}, size_t{100000000}))
         ->capture_default_str();
     cmd->add_option("--quality", opt->quality, "Radius-edge ratio bound (TetGen -q)")
-        ->check(CLI::Range(1.0, 100.0))
+        ->check(CLI::Range(1.1, 100.0))
         ->capture_default_str();
     cmd->callback([common, opt] {
       check_output(common->out);

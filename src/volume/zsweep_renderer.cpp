@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <stdexcept>
 
 #include "raster/bbox_scan.h"
@@ -20,6 +22,13 @@ namespace zs {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+std::string bytes_str(uint64_t b) {
+  char buf[64];
+  if (b >= (uint64_t(1) << 20)) std::snprintf(buf, sizeof buf, "%.1f MiB", double(b) / 1048576.0);
+  else std::snprintf(buf, sizeof buf, "%llu bytes", (unsigned long long)b);
+  return buf;
+}
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 }  // namespace
@@ -27,6 +36,12 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 uint64_t default_memory_budget() {
   const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
   return pages > 0 && size > 0 ? uint64_t(pages) * uint64_t(size) / 2 : (uint64_t(4) << 30);
+}
+
+uint64_t zsweep_state_bytes(size_t num_points, size_t num_faces, uint32_t width, uint32_t height) {
+  const uint64_t per_pixel = 3 * 8 + 8 + 4 + 4 + 4 + 1 /*compositor*/ + 4 * 3 + 1 /*lists*/;
+  const uint64_t per_point = sizeof(ScreenVertex) + sizeof(VertexHeap::Entry);
+  return uint64_t(width) * height * per_pixel + num_points * per_point + num_faces * 2 /*class, projected*/;
 }
 
 uint64_t peak_rss_bytes() {
@@ -51,12 +66,11 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
   // Memory: per-pixel compositing state and list heads first, fragments get the rest.
   const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
   S.memory_budget_bytes = budget;
-  const uint64_t per_pixel = 3 * 8 + 8 + 4 + 4 + 4 + 1 /*compositor*/ + 4 * 3 + 1 /*lists*/;
-  const uint64_t fixed = npix * per_pixel + uint64_t(mesh.num_points()) * 40 + topo.num_faces() * 2;
+  const uint64_t fixed = zsweep_state_bytes(mesh.num_points(), topo.num_faces(), rs.width, rs.height);
   if (fixed >= budget)
-    throw std::runtime_error("memory budget of " + std::to_string(budget >> 20) + " MiB cannot hold a " +
-                             std::to_string(rs.width) + "x" + std::to_string(rs.height) + " image (needs about " +
-                             std::to_string((fixed >> 20) + 1) + " MiB before fragments)");
+    throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " +
+                             std::to_string(rs.width) + "x" + std::to_string(rs.height) + " image (needs " +
+                             bytes_str(fixed) + " before any fragment)");
   const uint64_t max_fragments = (budget - fixed) / sizeof(Fragment);
 
   // View transform of every vertex.
@@ -173,8 +187,8 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
           composite_all(z_sweep);
           t2 = Clock::now();
           if (!lists.insert(p, z, s, kind))
-            throw std::runtime_error("memory budget of " + std::to_string(budget >> 20) +
-                                     " MiB is too small: " + std::to_string(lists.live_fragments()) +
+            throw std::runtime_error("memory budget of " + bytes_str(budget) +
+                                     " is too small: " + std::to_string(lists.live_fragments()) +
                                      " fragments must be pending at once in this view");
         }
         ++S.fragments;

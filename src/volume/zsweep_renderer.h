@@ -30,6 +30,9 @@ struct RenderStats {
 Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings, RenderStats* stats);
 
 uint64_t default_memory_budget();
+// Bytes the engine needs before any fragment: per-pixel state and per-vertex
+// and per-face arrays. The rest of the budget holds 16-byte fragments.
+uint64_t zsweep_state_bytes(size_t num_points, size_t num_faces, uint32_t width, uint32_t height);
 uint64_t peak_rss_bytes();
 
 }  // namespace zs

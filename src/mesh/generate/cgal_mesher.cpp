@@ -49,12 +49,26 @@ Criteria make_criteria(const Mesh3Criteria& c) {
 }
 
 // Mesh_3 (perturbation, exudation) and the domain's surface oracle draw from
-// CGAL's default generator; seed it before building the domain so the same
-// criteria give the same mesh.
-void seed(const Mesh3Criteria& c) { CGAL::get_default_random() = CGAL::Random(static_cast<unsigned>(c.seed)); }
+// CGAL's default generator, seeded in run(). Output can still differ by a few
+// tets between runs (Mesh_3 breaks some ties by handle address).
+void ignore_warning(const char*, const char*, const char*, int, const char*) {}
 
-C3t3 run(const Domain& domain, const Mesh3Criteria& c) {
-  return CGAL::make_mesh_3<C3t3>(domain, make_criteria(c));
+// make_mesh_3 seeds its surface from random rays through the domain; on thin
+// solids (an image's skull) an unlucky draw finds no surface and the mesh is
+// empty. Retry with the next seeds before giving up.
+template <class MakeDomain>
+C3t3 run(MakeDomain make_domain, const Mesh3Criteria& c) {
+  // CGAL reports the empty start as a warning on stderr; we retry instead.
+  auto old = CGAL::set_warning_handler(ignore_warning);
+  C3t3 c3t3;
+  for (unsigned attempt = 0; attempt < 8; ++attempt) {
+    CGAL::get_default_random() = CGAL::Random(static_cast<unsigned>(c.seed) + attempt);
+    Domain domain = make_domain();
+    c3t3 = CGAL::make_mesh_3<C3t3>(domain, make_criteria(c));
+    if (c3t3.number_of_cells_in_complex() > 0) break;
+  }
+  CGAL::set_warning_handler(old);
+  return c3t3;
 }
 
 // Tets of the complex (cells_in_complex), vertices compacted in first-use order.
@@ -88,12 +102,13 @@ TetMesh mesh_implicit(const ImplicitShape& shape, const Mesh3Criteria& crit) {
   check(crit);
   auto f = [&shape](const K::Point_3& p) { return shape.f({p.x(), p.y(), p.z()}); };
   const double r = shape.bounding_radius;
-  seed(crit);
-  // Sphere_3 takes the squared radius.
-  Domain domain = Domain::create_implicit_mesh_domain(
-      f, K::Sphere_3(CGAL::ORIGIN, r * r), CGAL::parameters::relative_error_bound = 1e-6,
-      CGAL::parameters::p_rng = &CGAL::get_default_random());
-  return extract(run(domain, crit));
+  auto make_domain = [&] {
+    // Sphere_3 takes the squared radius.
+    return Domain::create_implicit_mesh_domain(
+        f, K::Sphere_3(CGAL::ORIGIN, r * r), CGAL::parameters::relative_error_bound = 1e-6,
+        CGAL::parameters::p_rng = &CGAL::get_default_random());
+  };
+  return extract(run(make_domain, crit));
 }
 
 TetMesh mesh_gray_image(const std::string& path, double iso, bool inside_above,
@@ -111,14 +126,15 @@ TetMesh mesh_gray_image(const std::string& path, double iso, bool inside_above,
   // Label 1 on the requested side of the iso-value; outside the image counts
   // as the other side so the solid is closed at the image border.
   const double outside = inside_above ? iso - 1.0 - std::abs(iso) : iso + 1.0 + std::abs(iso);
-  seed(crit);
   auto to_label = [iso, inside_above](double v) { return (inside_above ? v > iso : v < iso) ? 1 : 0; };
-  Domain domain = Domain::create_gray_image_mesh_domain(
-      image, CGAL::parameters::iso_value = iso, CGAL::parameters::value_outside = outside,
-      CGAL::parameters::image_values_to_subdomain_indices = to_label,
-      CGAL::parameters::p_rng = &CGAL::get_default_random());
+  auto make_domain = [&] {
+    return Domain::create_gray_image_mesh_domain(
+        image, CGAL::parameters::iso_value = iso, CGAL::parameters::value_outside = outside,
+        CGAL::parameters::image_values_to_subdomain_indices = to_label,
+        CGAL::parameters::p_rng = &CGAL::get_default_random());
+  };
   try {
-    TetMesh m = extract(run(domain, crit));
+    TetMesh m = extract(run(make_domain, crit));
     m.notes.push_back("generated from " + path + " (iso " + std::to_string(iso) + ")");
     return m;
   } catch (const std::runtime_error& e) {

@@ -14,7 +14,7 @@ struct ShapeMeshOptions {
   size_t target_tets = 10000;
   uint64_t seed = 1;
   double quality = 1.414;   // TetGen radius-edge bound
-  double tolerance = 0.2;   // accept counts within target * (1 +- tolerance)
+  double tolerance = 0.1;   // accept counts within target * (1 +- tolerance)
 };
 
 // The count is steered through TetGen's max-volume bound: calibrated on a

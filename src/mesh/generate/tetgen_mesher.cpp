@@ -64,6 +64,9 @@ TetMesh tetrahedralize(const Plc& plc, const TetgenOptions& opt) {
   if (plc.points.size() < 4 || plc.facets.empty())
     throw std::runtime_error("surface has too few points or faces to enclose a volume");
   if (plc.points.size() > INT_MAX / 3) throw std::runtime_error("surface too large for TetGen");
+  // TetGen's refinement is only guaranteed to terminate for ratios above ~1.1.
+  if (opt.quality > 0 && opt.quality < 1.1)
+    throw std::invalid_argument("quality (radius-edge ratio) must be 0 (off) or >= 1.1");
 
   tetgenio in, out;
   fill_input(plc, in);

@@ -7,7 +7,7 @@
 namespace zs {
 
 struct TetgenOptions {
-  double quality = 1.414;        // radius-edge ratio bound (-q); <= 0 disables
+  double quality = 1.414;        // radius-edge ratio bound (-q), >= 1.1; 0 disables
   double max_volume = 0.0;       // max tet volume (-a); <= 0 = unbounded
   bool preserve_surface = false; // -Y: no Steiner points on the boundary
 };
