@@ -91,7 +91,7 @@ Mesh3Criteria criteria(const SizeOpts& s, double default_size, uint64_t seed) {
 
 void add_shape_commands(CLI::App* gen) {
   for (const ShapeInfo& info : shape_catalog()) {
-    CLI::App* cmd = gen->add_subcommand(info.name, "TetGen mesh of a " + info.description);
+    CLI::App* cmd = gen->add_subcommand(info.name, "TetGen mesh: " + info.description);
     auto common = std::make_shared<Common>();
     auto opt = std::make_shared<ShapeMeshOptions>();
     opt->shape = info.name;

@@ -3,10 +3,12 @@
 // default scene.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -28,7 +30,7 @@ struct RenderArgs {
   std::string input;  // scene .json, mesh, or empty (default scene)
   ReadOptions opt;
   std::string out, stats;
-  int threads = 1;
+  int threads = 0;  // 0 = every core
   uint32_t width = 0, height = 0;
   std::string scan, integrator, projection;
   double memory_budget_mb = 0;
@@ -125,7 +127,8 @@ void run(const RenderArgs& a) {
   if (a.memory_budget_mb > 0) rs.memory_budget_bytes = uint64_t(a.memory_budget_mb * 1048576.0);
   if (a.early_termination >= 0) rs.early_termination = a.early_termination;
   if (a.max_list_length >= 0) rs.max_list_length = uint32_t(a.max_list_length);
-  rs.threads = a.threads;
+  rs.threads = a.threads > 0 ? a.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  rs.progress = true;
 
   const auto t0 = Clock::now();
   const TetMesh mesh = scene.mesh_path.empty() ? default_mesh() : read_mesh(scene.mesh_path, scene.mesh_options);
@@ -161,7 +164,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("input", a->input, "Scene .json, or a mesh (automatic camera and transfer function)");
   cmd->add_option("-o,--output", a->out, "Output image: .png (8-bit), .exr or .tif (float)")->required();
   cmd->add_option("--stats", a->stats, "Write render statistics as JSON");
-  cmd->add_option("--threads", a->threads, "Threads (1 for now)")->check(CLI::Range(1, 1024));
+  cmd->add_option("--threads", a->threads, "Threads (default: every core); images are identical for any count")
+      ->check(CLI::Range(1, 1024));
   cmd->add_option("--q", a->opt.q_path, "PLOT3D solution file (mesh input)");
   cmd->add_option("--scalar", a->opt.scalar, "Point array or PLOT3D function (mesh input)");
   cmd->add_option("--width", a->width, "Override image width")->check(CLI::Range(1u, 1u << 20));

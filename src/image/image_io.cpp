@@ -16,6 +16,9 @@ void write_image(const std::string& path, const Image& img) {
   const bool is_float = fmt == "openexr" || fmt == "tiff";
   OIIO::ImageSpec spec(int(img.width), int(img.height), 4, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "Linear");
+  // Store our values as they are: OIIO would otherwise un-premultiply
+  // before writing a PNG (whose alpha is unassociated by definition).
+  spec.attribute("oiio:UnassociatedAlpha", 1);
   if (!file->open(out.temp_path(), spec)) throw std::runtime_error(path + ": cannot write: " + file->geterror());
   bool ok;
   if (is_float) {
@@ -31,7 +34,9 @@ void write_image(const std::string& path, const Image& img) {
 }
 
 Image read_image(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // the stored values, unconverted
+  auto in = OIIO::ImageInput::open(path, &config);
   if (!in) throw std::runtime_error(path + ": cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.nchannels < 1) throw std::runtime_error(path + ": image has no channels");

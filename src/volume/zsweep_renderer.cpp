@@ -7,11 +7,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <string>
+#include <mutex>
 #include <stdexcept>
+#include <string>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 
 #include "raster/bbox_scan.h"
 #include "raster/screen_triangle.h"
+#include "util/progress.h"
 #include "volume/compositor.h"
 #include "volume/face_classes.h"
 #include "volume/pixel_lists.h"
@@ -22,6 +27,7 @@ namespace zs {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 std::string bytes_str(uint64_t b) {
   char buf[64];
@@ -29,7 +35,163 @@ std::string bytes_str(uint64_t b) {
   else std::snprintf(buf, sizeof buf, "%llu bytes", (unsigned long long)b);
   return buf;
 }
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// Everything the tiles share, computed once: mesh -> view.
+struct SweepInput {
+  const Topology& topo;
+  const RenderSettings& rs;
+  const View& view;
+  std::vector<ScreenVertex> sv;            // every vertex in view space
+  std::vector<FaceClass> cls;              // per face
+  std::vector<VertexHeap::Entry> events;   // vertices that start a face to project
+  double z_origin = 0;                     // fragments store depth - z_origin
+};
+
+void add_stats(RenderStats& a, const RenderStats& b) {
+  a.ms_list_generation += b.ms_list_generation;
+  a.ms_scan_convert += b.ms_scan_convert;
+  a.ms_insert += b.ms_insert;
+  a.ms_composite += b.ms_composite;
+  a.pixel_tests += b.pixel_tests;
+  a.pixel_hits += b.pixel_hits;
+  a.fragments += b.fragments;
+  a.faces_projected += b.faces_projected;
+  a.faces_offscreen += b.faces_offscreen;
+  a.faces_degenerate += b.faces_degenerate;
+  a.faces_clipped += b.faces_clipped;
+  a.max_list_length = std::max(a.max_list_length, b.max_list_length);
+  a.forced_composites += b.forced_composites;
+  a.budget_flushes += b.budget_flushes;
+  a.composite_events += b.composite_events;
+  a.segments += b.segments;
+  a.early_terminated_pixels += b.early_terminated_pixels;
+  a.peak_fragments += b.peak_fragments;
+}
+
+// One sweep over the whole mesh for the pixels of `vp` (digest §1.2).
+void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments, const SegmentIntegrator& integ,
+                Image& img, RenderStats& S, Progress& progress) {
+  const Topology& topo = in.topo;
+  const RenderSettings& rs = in.rs;
+  const View& view = in.view;
+  const auto& sv = in.sv;
+  const auto& cls = in.cls;
+  const uint32_t vw = uint32_t(vp.x1 - vp.x0), vh = uint32_t(vp.y1 - vp.y0);
+  const uint32_t npix = vw * vh;
+
+  VertexHeap heap;
+  heap.assign(in.events);
+  std::vector<uint8_t> projected(topo.num_faces(), 0);
+  const double et = rs.early_termination > 0 ? rs.early_termination / 510.0 : 0.0;
+  Compositor comp(view, vp, integ, et);
+  PixelLists lists(npix, max_fragments);
+
+  auto composite_all = [&](float z_limit) {
+    const auto t0 = Clock::now();
+    for (uint32_t p : lists.active()) comp.composite(lists, p, z_limit);
+    lists.compact_active();
+    S.ms_composite += ms_since(t0);
+  };
+
+  FaceFragments frags;
+  double z_target = -INFINITY;
+  uint64_t popped = 0;
+  while (!heap.empty()) {
+    const VertexHeap::Entry ev = heap.pop();
+    if ((++popped & 4095) == 0) progress.add(4096);
+    const float z_sweep = float(ev.z - in.z_origin);
+    if (ev.z > z_target) {
+      // The sweep passed z_target: every face still to come starts at or
+      // after ev.z, so every fragment before ev.z is final. Composite them
+      // and aim at the farthest vertex of this vertex's faces (ZSweep's
+      // z_target), so compositing stays delayed but lists stay short.
+      if (!lists.active().empty()) {
+        ++S.composite_events;
+        composite_all(z_sweep);
+      }
+      z_target = ev.z;
+      for (uint32_t f : topo.use_set(ev.v))
+        for (uint32_t v : topo.faces[f]) z_target = std::max(z_target, sv[v].z);
+    }
+    for (uint32_t f : topo.use_set(ev.v)) {
+      if (projected[f] || cls[f] == FaceClass::Culled) continue;
+      projected[f] = 1;
+      const auto& fv = topo.faces[f];
+      const ScreenVertex tri[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
+      if (tri[0].z <= 0 || tri[1].z <= 0 || tri[2].z <= 0) {
+        // Reaches behind the eye: only positive distances are rendered, and
+        // near-plane clipping is not implemented yet — counted, not drawn.
+        ++S.faces_clipped;
+        continue;
+      }
+      const double min_x = std::min({tri[0].x, tri[1].x, tri[2].x}), max_x = std::max({tri[0].x, tri[1].x, tri[2].x});
+      const double min_y = std::min({tri[0].y, tri[1].y, tri[2].y}), max_y = std::max({tri[0].y, tri[1].y, tri[2].y});
+      if (max_x < vp.x0 - 0.5 || min_x > vp.x1 - 0.5 || max_y < vp.y0 - 0.5 || min_y > vp.y1 - 0.5) {
+        ++S.faces_offscreen;
+        continue;
+      }
+      const auto t0 = Clock::now();
+      ScreenTriangle st;
+      const bool ok = setup_triangle(tri, view.perspective(), &st);
+      const auto t1 = Clock::now();
+      S.ms_list_generation += std::chrono::duration<double, std::milli>(t1 - t0).count();
+      if (!ok) {
+        ++S.faces_degenerate;
+        continue;
+      }
+      ++S.faces_projected;
+      frags.clear();
+      ScanCounters sc;
+      scan_bbox(st, vp, frags, sc);
+      S.pixel_tests += sc.pixel_tests;
+      S.pixel_hits += sc.pixel_hits;
+      auto t2 = Clock::now();
+      S.ms_scan_convert += std::chrono::duration<double, std::milli>(t2 - t1).count();
+
+      const uint32_t kind = cls[f] == FaceClass::Entry ? kEntry : cls[f] == FaceClass::Exit ? kExit : kInterior;
+      for (size_t k = 0; k < frags.size(); ++k) {
+        const uint32_t p = uint32_t(frags.y[k] - vp.y0) * vw + uint32_t(frags.x[k] - vp.x0);
+        if (comp.done(p)) continue;  // early-terminated: nothing behind matters
+        const float z = float(frags.z[k] - in.z_origin), s = float(frags.s[k]);
+        if (!lists.insert(p, z, s, kind)) {
+          // Pool at its budget: composite everything already final (before
+          // the sweep plane) everywhere, then retry once.
+          ++S.budget_flushes;
+          S.ms_insert += ms_since(t2);
+          composite_all(z_sweep);
+          t2 = Clock::now();
+          if (!lists.insert(p, z, s, kind))
+            throw std::runtime_error("memory budget too small: " + std::to_string(lists.live_fragments()) +
+                                     " fragments (" + bytes_str(lists.live_fragments() * sizeof(Fragment)) +
+                                     ") must be pending at once in this view");
+        }
+        ++S.fragments;
+        const uint32_t len = lists.length(p);
+        if (len > S.max_list_length) S.max_list_length = len;
+        if (rs.max_list_length && len > rs.max_list_length) {
+          ++S.forced_composites;  // force this pixel's final fragments out now
+          comp.composite(lists, p, z_sweep);
+        }
+      }
+      S.ms_insert += ms_since(t2);
+    }
+  }
+  progress.add(popped & 4095);
+  composite_all(INFINITY);
+  S.segments += comp.segments();
+  S.early_terminated_pixels += comp.terminated_pixels();
+  S.peak_fragments += lists.peak_fragments();
+
+  // out = I + (1 - alpha)·background, alpha = 1 - T (premultiplied).
+  for (uint32_t p = 0; p < npix; ++p) {
+    const double T = comp.transmittance(p);
+    const double* c = comp.rgb(p);
+    float* o = img.at(uint32_t(vp.x0) + p % vw, uint32_t(vp.y0) + p / vw);
+    for (int k = 0; k < 3; ++k) o[k] = float(c[k] + T * rs.background[k]);
+    o[3] = float((1.0 - T) + T * rs.background[3]);
+    if (T < 1.0) ++S.rendered_pixels;
+  }
+}
 
 }  // namespace
 
@@ -39,7 +201,7 @@ uint64_t default_memory_budget() {
 }
 
 uint64_t zsweep_state_bytes(size_t num_points, size_t num_faces, uint32_t width, uint32_t height) {
-  const uint64_t per_pixel = 3 * 8 + 8 + 4 + 4 + 4 + 1 /*compositor*/ + 4 * 3 + 1 /*lists*/;
+  const uint64_t per_pixel = 3 * 8 + 8 + 4 + 4 + 4 + 1 /*compositor*/ + 4 * 3 + 1 /*lists*/ + 16 /*image*/;
   const uint64_t per_point = sizeof(ScreenVertex) + sizeof(VertexHeap::Entry);
   return uint64_t(width) * height * per_pixel + num_points * per_point + num_faces * 2 /*class, projected*/;
 }
@@ -60,163 +222,67 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
     throw std::runtime_error(std::string("scan strategy '") + to_string(rs.scan) + "' is not implemented yet");
 
   const View view(rs.camera, rs.width, rs.height);
-  const Viewport vp{0, 0, int(rs.width), int(rs.height)};
-  const uint64_t npix = uint64_t(rs.width) * rs.height;
+  const int threads = std::max(1, rs.threads);
+  // Sort-first tiles: row bands, each swept independently over the faces
+  // that touch it. Several bands per thread balance uneven bands; one band
+  // when single-threaded. Per-pixel results do not depend on the tiling.
+  const int bands = threads == 1 ? 1 : std::min<int>(int(rs.height), 4 * threads);
 
-  // Memory: per-pixel compositing state and list heads first, fragments get the rest.
   const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
   S.memory_budget_bytes = budget;
-  const uint64_t fixed = zsweep_state_bytes(mesh.num_points(), topo.num_faces(), rs.width, rs.height);
+  const uint64_t fixed = zsweep_state_bytes(mesh.num_points(), topo.num_faces(), rs.width, rs.height) +
+                         uint64_t(threads - 1) * topo.num_faces();
   if (fixed >= budget)
-    throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " +
-                             std::to_string(rs.width) + "x" + std::to_string(rs.height) + " image (needs " +
-                             bytes_str(fixed) + " before any fragment)");
-  const uint64_t max_fragments = (budget - fixed) / sizeof(Fragment);
+    throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " + std::to_string(rs.width) +
+                             "x" + std::to_string(rs.height) + " image (needs " + bytes_str(fixed) +
+                             " before any fragment)");
+  const uint64_t max_fragments = (budget - fixed) / sizeof(Fragment) / uint64_t(threads);
 
-  // View transform of every vertex.
-  const size_t nv = mesh.num_points();
-  std::vector<ScreenVertex> sv(nv);
+  SweepInput in{topo, rs, view, {}, {}, {}, 0};
+  in.sv.resize(mesh.num_points());
   double zmin = INFINITY;
-  for (uint32_t v = 0; v < nv; ++v) {
+  for (uint32_t v = 0; v < mesh.num_points(); ++v) {
     const ViewPoint p = view.project(mesh.points[v]);
-    sv[v] = {p.x, p.y, p.z, mesh.has_scalars() ? mesh.scalars[v] : 0.0, v};
+    in.sv[v] = {p.x, p.y, p.z, mesh.has_scalars() ? mesh.scalars[v] : 0.0, v};
     if (p.z > 0) zmin = std::min(zmin, p.z);
   }
   // Fragments store depth relative to the nearest vertex, as float: keeps
   // their precision when the camera is far from the mesh.
-  const double z_origin = std::isfinite(zmin) ? zmin : 0.0;
-  // Only geometry at positive distance is rendered; faces reaching behind this
-  // are not yet clipped (counted in faces_clipped).
-  const double z_near = 0.0;
+  in.z_origin = std::isfinite(zmin) ? zmin : 0.0;
 
   FaceClassCounts fc;
-  const std::vector<FaceClass> cls = classify_faces(mesh, topo, rs.tf, view, &fc);
+  in.cls = classify_faces(mesh, topo, rs.tf, view, &fc);
   S.tets_invisible = fc.tets_invisible;
   S.tets_degenerate = fc.tets_degenerate;
   S.faces_culled = fc.faces_culled;
-
-  // Event list: vertices that start at least one face to project.
-  std::vector<uint8_t> projected(topo.num_faces(), 0);
-  std::vector<VertexHeap::Entry> events;
-  for (uint32_t v = 0; v < nv; ++v) {
-    bool any = false;
+  for (uint32_t v = 0; v < mesh.num_points(); ++v) {
+    if (!std::isfinite(in.sv[v].z)) continue;
     for (uint32_t f : topo.use_set(v))
-      if (cls[f] != FaceClass::Culled) {
-        any = true;
+      if (in.cls[f] != FaceClass::Culled) {
+        in.events.push_back({in.sv[v].z, v});
         break;
       }
-    if (any && std::isfinite(sv[v].z)) events.push_back({sv[v].z, v});
   }
-  VertexHeap heap;
-  heap.assign(std::move(events));
-
-  const double et = rs.early_termination > 0 ? rs.early_termination / 510.0 : 0.0;
   const SegmentIntegrator integ(rs.tf, rs.integrator);
-  Compositor comp(view, vp, integ, et);
-  PixelLists lists(npix, max_fragments);
   S.ms_setup = ms_since(t_start);
 
-  auto composite_all = [&](float z_limit) {
-    const auto t0 = Clock::now();
-    for (uint32_t p : lists.active()) comp.composite(lists, p, z_limit);
-    lists.compact_active();
-    S.ms_composite += ms_since(t0);
-  };
-
-  FaceFragments frags;
-  double z_target = -INFINITY;
-  while (!heap.empty()) {
-    const VertexHeap::Entry ev = heap.pop();
-    const float z_sweep = float(ev.z - z_origin);
-    if (ev.z > z_target) {
-      // The sweep passed z_target: every face still to come starts at or
-      // after ev.z, so every fragment before ev.z is final. Composite them
-      // and aim at the farthest vertex of this vertex's faces (ZSweep's
-      // z_target), so compositing stays delayed but lists stay short.
-      if (!lists.active().empty()) {
-        ++S.composite_events;
-        composite_all(z_sweep);
-      }
-      z_target = ev.z;
-      for (uint32_t f : topo.use_set(ev.v))
-        for (uint32_t v : topo.faces[f]) z_target = std::max(z_target, sv[v].z);
-    }
-    for (uint32_t f : topo.use_set(ev.v)) {
-      if (projected[f] || cls[f] == FaceClass::Culled) continue;
-      projected[f] = 1;
-      const auto& fv = topo.faces[f];
-      const ScreenVertex tri[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
-      if (tri[0].z <= z_near || tri[1].z <= z_near || tri[2].z <= z_near) {
-        ++S.faces_clipped;
-        continue;
-      }
-      const double min_x = std::min({tri[0].x, tri[1].x, tri[2].x}), max_x = std::max({tri[0].x, tri[1].x, tri[2].x});
-      const double min_y = std::min({tri[0].y, tri[1].y, tri[2].y}), max_y = std::max({tri[0].y, tri[1].y, tri[2].y});
-      if (max_x < vp.x0 - 0.5 || min_x > vp.x1 - 0.5 || max_y < vp.y0 - 0.5 || min_y > vp.y1 - 0.5) {
-        ++S.faces_offscreen;
-        continue;
-      }
-      auto t0 = Clock::now();
-      ScreenTriangle st;
-      const bool ok = setup_triangle(tri, view.perspective(), &st);
-      auto t1 = Clock::now();
-      S.ms_list_generation += std::chrono::duration<double, std::milli>(t1 - t0).count();
-      if (!ok) {
-        ++S.faces_degenerate;
-        continue;
-      }
-      ++S.faces_projected;
-      frags.clear();
-      ScanCounters sc;
-      scan_bbox(st, vp, frags, sc);
-      S.pixel_tests += sc.pixel_tests;
-      S.pixel_hits += sc.pixel_hits;
-      auto t2 = Clock::now();
-      S.ms_scan_convert += std::chrono::duration<double, std::milli>(t2 - t1).count();
-
-      const uint32_t kind = cls[f] == FaceClass::Entry ? kEntry : cls[f] == FaceClass::Exit ? kExit : kInterior;
-      for (size_t k = 0; k < frags.size(); ++k) {
-        const uint32_t p = uint32_t(frags.y[k] - vp.y0) * uint32_t(vp.x1 - vp.x0) + uint32_t(frags.x[k] - vp.x0);
-        if (comp.done(p)) continue;  // early-terminated: nothing behind matters
-        const float z = float(frags.z[k] - z_origin), s = float(frags.s[k]);
-        if (!lists.insert(p, z, s, kind)) {
-          // Pool at its budget: composite everything already final (before
-          // the sweep plane) everywhere, then retry once.
-          ++S.budget_flushes;
-          S.ms_insert += ms_since(t2);
-          composite_all(z_sweep);
-          t2 = Clock::now();
-          if (!lists.insert(p, z, s, kind))
-            throw std::runtime_error("memory budget of " + bytes_str(budget) +
-                                     " is too small: " + std::to_string(lists.live_fragments()) +
-                                     " fragments must be pending at once in this view");
-        }
-        ++S.fragments;
-        const uint32_t len = lists.length(p);
-        if (len > S.max_list_length) S.max_list_length = len;
-        if (rs.max_list_length && len > rs.max_list_length) {
-          // Force this pixel's final fragments out now.
-          ++S.forced_composites;
-          comp.composite(lists, p, z_sweep);
-        }
-      }
-      S.ms_insert += ms_since(t2);
-    }
-  }
-  composite_all(INFINITY);
-  S.segments = comp.segments();
-  S.early_terminated_pixels = comp.terminated_pixels();
-  S.peak_fragments = lists.peak_fragments();
-
-  // out = I + (1 - alpha)·background, alpha = 1 - T (premultiplied).
   Image img(rs.width, rs.height);
-  for (uint32_t p = 0; p < npix; ++p) {
-    const double T = comp.transmittance(p);
-    const double* c = comp.rgb(p);
-    float* o = &img.rgba[size_t(p) * 4];
-    for (int k = 0; k < 3; ++k) o[k] = float(c[k] + T * rs.background[k]);
-    o[3] = float((1.0 - T) + T * rs.background[3]);
-    if (T < 1.0) ++S.rendered_pixels;
+  Progress progress("render", uint64_t(in.events.size()) * bands, rs.progress);
+  std::vector<RenderStats> tile_stats(bands);
+  auto run_band = [&](int b) {
+    const int y0 = int(uint64_t(rs.height) * b / bands), y1 = int(uint64_t(rs.height) * (b + 1) / bands);
+    sweep_tile(in, Viewport{0, y0, int(rs.width), y1}, max_fragments, integ, img, tile_stats[b], progress);
+  };
+  if (bands == 1) {
+    run_band(0);
+  } else {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    tbb::parallel_for(0, bands, run_band);
+  }
+  progress.finish();
+  for (const RenderStats& t : tile_stats) {
+    add_stats(S, t);
+    S.rendered_pixels += t.rendered_pixels;
   }
   S.peak_rss_bytes = peak_rss_bytes();
   S.ms_total = ms_since(t_start);

@@ -247,3 +247,31 @@ TEST(ZSweep, EarlyTerminationStaysWithinItsBound) {
 
 }  // namespace
 }  // namespace zs
+
+namespace zs {
+namespace {
+
+TEST(ZSweep, ThreadsGiveBitIdenticalImages) {
+  const glm::dvec3 lo{-1, -1, -1}, hi{1, 1, 1};
+  auto field = [](const glm::dvec3& p) { return 0.5 + 0.3 * p.x * p.y + 0.2 * p.z; };
+  const TetMesh m = test::box_mesh({5, 6, 4}, lo, hi, field);
+  TransferFunction tf({{0, 0.9, 0.3, 0.1}, {1, 0.1, 0.4, 0.9}}, {{0.0, 0.1}, {0.4, 0.8}, {1.0, 0.3}}, 0.7);
+  RenderSettings rs;
+  rs.width = 70;
+  rs.height = 45;
+  rs.camera.projection = Projection::Perspective;
+  rs.camera.eye = {2, 2.5, 3};
+  rs.tf = tf;
+  const Topology t = build_topology(m);
+  RenderStats s1, s3;
+  const Image one = render_zsweep(m, t, rs, &s1);
+  rs.threads = 3;
+  const Image three = render_zsweep(m, t, rs, &s3);
+  EXPECT_EQ(s1.pixel_hits, s3.pixel_hits);
+  EXPECT_EQ(s1.rendered_pixels, s3.rendered_pixels);
+  ASSERT_EQ(one.rgba.size(), three.rgba.size());
+  for (size_t k = 0; k < one.rgba.size(); ++k) ASSERT_EQ(one.rgba[k], three.rgba[k]) << k;
+}
+
+}  // namespace
+}  // namespace zs

@@ -1,0 +1,100 @@
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "image/image.h"
+#include "scene/scene.h"
+#include "test_paths.h"
+
+namespace zs {
+namespace {
+
+std::string error_of(const std::string& json) {
+  try {
+    parse_scene(json, "s.json", "/base");
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scene, ParsesEveryKey) {
+  const Scene s = parse_scene(R"({
+    "mesh": {"path": "m.off", "scalar": "Density", "q": "q.bin"},
+    "image": {"width": 320, "height": 200, "background": [0.1, 0.2, 0.3, 1]},
+    "camera": {"projection": "perspective", "eye": [1,2,3], "target": [0,0,0], "up": [0,0,1],
+               "height": 2.5, "fov_y": 45},
+    "transfer_function": {"color": [[0,1,0,0],[1,0,0,1]], "opacity": [[0,0],[1,0.5]], "unit_distance": 2},
+    "render": {"scan": "bbox", "integrator": "linear", "early_termination": 4}
+  })", "s.json", "/base");
+  EXPECT_EQ(s.mesh_path, "/base/m.off");
+  EXPECT_EQ(s.mesh_options.q_path, "/base/q.bin");
+  EXPECT_EQ(s.mesh_options.scalar, "Density");
+  EXPECT_EQ(s.settings.width, 320u);
+  EXPECT_EQ(s.settings.camera.projection, Projection::Perspective);
+  EXPECT_EQ(s.settings.camera.up.z, 1.0);
+  EXPECT_EQ(s.settings.integrator, Integrator::Linear);
+  EXPECT_EQ(s.settings.early_termination, 4.0);
+  EXPECT_DOUBLE_EQ(s.settings.tf.opacity(0.5), 0.25);
+  EXPECT_DOUBLE_EQ(s.settings.tf.unit_distance(), 2.0);
+  EXPECT_TRUE(s.has_camera);
+}
+
+TEST(Scene, RejectsBadInputWithOneLine) {
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "camrea": {}})"),
+            "s.json: unknown key 'scene.camrea' (allowed: mesh, image, camera, transfer_function, render)");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"scan": "zigzag"}})"),
+            "s.json: render.scan must be \"bbox\", \"bconvert\" or \"span\"");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "transfer_function": {"color": [[1,0,0,0],[0,1,1,1]], "opacity": [[0,1]]}})"),
+            "s.json: transfer_function.color: points must be strictly increasing in the scalar (point 1 is out of order)");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "transfer_function": {"color": [[0,0,0,0]], "opacity": [[0,1],[0,0.5]]}})"),
+            "s.json: transfer_function.opacity: points must be strictly increasing in the scalar (point 1 is a duplicate)");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "camera": {"eye": [0,0,1], "target": [0,0,1]}})"),
+            "s.json: camera.eye and camera.target must differ");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "image": {"width": 0}})"),
+            "s.json: image.width must be an integer from 1 to 1048576");
+  EXPECT_NE(error_of("{\"mesh\": \n 3,"), "");
+  EXPECT_NE(error_of("{\"mesh\": \n 3,").find("s.json: invalid JSON"), std::string::npos);
+}
+
+TEST(Scene, AcceptsParaViewPresetForColour) {
+  const auto dir = test::scratch_dir();
+  {
+    std::ofstream f(dir / "cool.json");
+    f << R"([{"Name": "Cool", "ColorSpace": "RGB", "RGBPoints": [0, 0, 0, 1, 10, 1, 0, 0]}])";
+  }
+  {
+    std::ofstream f(dir / "scene.json");
+    f << R"({"mesh": "m.off", "transfer_function": {"color": "cool.json", "opacity": [[0, 0.5]]}})";
+  }
+  const Scene s = load_scene((dir / "scene.json").string());
+  EXPECT_DOUBLE_EQ(s.settings.tf.color(5)[0], 0.5);
+  EXPECT_DOUBLE_EQ(s.settings.tf.color(5)[2], 0.5);
+  // Inline preset object too.
+  const Scene t = parse_scene(R"({"mesh": "m.off", "transfer_function":
+      {"color": {"RGBPoints": [0, 1, 1, 1, 1, 0, 0, 0]}, "opacity": [[0, 0.5]]}})", "t.json", "");
+  EXPECT_DOUBLE_EQ(t.settings.tf.color(0.25)[1], 0.75);
+}
+
+TEST(ImageIo, ExrIsFloatAndPngIsQuantizedWithoutGamma) {
+  const auto dir = test::scratch_dir();
+  Image img(3, 2);
+  for (size_t k = 0; k < img.rgba.size(); ++k) img.rgba[k] = float(k) / 23.0f;
+  write_image((dir / "a.exr").string(), img);
+  write_image((dir / "a.png").string(), img);
+  write_image((dir / "a.tif").string(), img);
+  const Image exr = read_image((dir / "a.exr").string());
+  const Image tif = read_image((dir / "a.tif").string());
+  const Image png = read_image((dir / "a.png").string());
+  for (size_t k = 0; k < img.rgba.size(); ++k) {
+    EXPECT_EQ(exr.rgba[k], img.rgba[k]);
+    EXPECT_EQ(tif.rgba[k], img.rgba[k]);
+    EXPECT_NEAR(png.rgba[k], img.rgba[k], 0.5 / 255 + 1e-6);
+  }
+  EXPECT_THROW(write_image((dir / "nodir" / "x.png").string(), img), std::runtime_error);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 3);
+}
+
+}  // namespace
+}  // namespace zs
