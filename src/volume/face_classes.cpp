@@ -8,7 +8,8 @@
 namespace zs {
 
 std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, const TransferFunction& tf,
-                                      const View& view, FaceClassCounts* counts) {
+                                      const View& view, FaceClassCounts* counts,
+                                      std::vector<uint8_t>* tet_visible) {
   const size_t nt = m.num_tets();
   std::vector<uint8_t> visible(nt, 0);
   for (size_t t = 0; t < nt; ++t) {
@@ -69,6 +70,7 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
     // tet is on the other side.
     cls[f] = (side_tet > 0) != (side_eye > 0) ? FaceClass::Entry : FaceClass::Exit;
   }
+  if (tet_visible) *tet_visible = std::move(visible);
   return cls;
 }
 

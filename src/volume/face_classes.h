@@ -32,7 +32,9 @@ struct FaceClassCounts {
   uint64_t faces_culled = 0;
 };
 
+// tet_visible (optional) receives one byte per tet.
 std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, const TransferFunction& tf,
-                                      const View& view, FaceClassCounts* counts);
+                                      const View& view, FaceClassCounts* counts,
+                                      std::vector<uint8_t>* tet_visible = nullptr);
 
 }  // namespace zs

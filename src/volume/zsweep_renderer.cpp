@@ -19,6 +19,7 @@
 #include "util/progress.h"
 #include "volume/compositor.h"
 #include "volume/face_classes.h"
+#include "volume/near_clip.h"
 #include "volume/pixel_lists.h"
 #include "volume/vertex_heap.h"
 
@@ -44,6 +45,8 @@ struct SweepInput {
   std::vector<ScreenVertex> sv;            // every vertex in view space
   std::vector<FaceClass> cls;              // per face
   std::vector<VertexHeap::Entry> events;   // vertices that start a face to project
+  std::vector<NearTriangle> near;          // clipped faces and cross-sections at z_near
+  std::vector<uint8_t> clipped;            // per face: replaced by its near triangles
   double z_origin = 0;                     // fragments store depth - z_origin
 };
 
@@ -58,7 +61,6 @@ void add_stats(RenderStats& a, const RenderStats& b) {
   a.faces_projected += b.faces_projected;
   a.faces_offscreen += b.faces_offscreen;
   a.faces_degenerate += b.faces_degenerate;
-  a.faces_clipped += b.faces_clipped;
   a.max_list_length = std::max(a.max_list_length, b.max_list_length);
   a.forced_composites += b.forced_composites;
   a.budget_flushes += b.budget_flushes;
@@ -81,7 +83,7 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
 
   VertexHeap heap;
   heap.assign(in.events);
-  std::vector<uint8_t> projected(topo.num_faces(), 0);
+  std::vector<uint8_t> projected = in.clipped;  // clipped faces are drawn as near pieces
   const double et = rs.early_termination > 0 ? rs.early_termination / 510.0 : 0.0;
   Compositor comp(view, vp, integ, et);
   PixelLists lists(npix, max_fragments);
@@ -94,6 +96,63 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
   };
 
   FaceFragments frags;
+  // Scan-converts one triangle and inserts its fragments (z_sweep: the depth
+  // before which every fragment is final, for forced compositing).
+  auto project = [&](const ScreenVertex tri[3], FaceClass fclass, float z_sweep) {
+    const double min_x = std::min({tri[0].x, tri[1].x, tri[2].x}), max_x = std::max({tri[0].x, tri[1].x, tri[2].x});
+    const double min_y = std::min({tri[0].y, tri[1].y, tri[2].y}), max_y = std::max({tri[0].y, tri[1].y, tri[2].y});
+    if (max_x < vp.x0 - 0.5 || min_x > vp.x1 - 0.5 || max_y < vp.y0 - 0.5 || min_y > vp.y1 - 0.5) {
+      ++S.faces_offscreen;
+      return;
+    }
+    const auto t0 = Clock::now();
+    ScreenTriangle st;
+    const bool ok = setup_triangle(tri, view.perspective(), &st);
+    const auto t1 = Clock::now();
+    S.ms_list_generation += std::chrono::duration<double, std::milli>(t1 - t0).count();
+    if (!ok) {
+      ++S.faces_degenerate;
+      return;
+    }
+    ++S.faces_projected;
+    frags.clear();
+    ScanCounters sc;
+    scan_bbox(st, vp, frags, sc);
+    S.pixel_tests += sc.pixel_tests;
+    S.pixel_hits += sc.pixel_hits;
+    auto t2 = Clock::now();
+    S.ms_scan_convert += std::chrono::duration<double, std::milli>(t2 - t1).count();
+
+    const uint32_t kind = fclass == FaceClass::Entry ? kEntry : fclass == FaceClass::Exit ? kExit : kInterior;
+    for (size_t k = 0; k < frags.size(); ++k) {
+      const uint32_t p = uint32_t(frags.y[k] - vp.y0) * vw + uint32_t(frags.x[k] - vp.x0);
+      if (comp.done(p)) continue;  // early-terminated: nothing behind matters
+      const float z = float(frags.z[k] - in.z_origin), s = float(frags.s[k]);
+      if (!lists.insert(p, z, s, kind)) {
+        // Pool at its budget: composite everything already final (before
+        // the sweep plane) everywhere, then retry once.
+        ++S.budget_flushes;
+        S.ms_insert += ms_since(t2);
+        composite_all(z_sweep);
+        t2 = Clock::now();
+        if (!lists.insert(p, z, s, kind))
+          throw std::runtime_error("memory budget too small: " + std::to_string(lists.live_fragments()) +
+                                   " fragments (" + bytes_str(lists.live_fragments() * sizeof(Fragment)) +
+                                   ") must be pending at once in this view");
+      }
+      ++S.fragments;
+      const uint32_t len = lists.length(p);
+      if (len > S.max_list_length) S.max_list_length = len;
+      if (rs.max_list_length && len > rs.max_list_length) {
+        ++S.forced_composites;  // force this pixel's final fragments out now
+        comp.composite(lists, p, z_sweep);
+      }
+    }
+    S.ms_insert += ms_since(t2);
+  };
+
+  // Near-plane pieces first: they start at z_near, before every vertex.
+  for (const NearTriangle& nt : in.near) project(nt.v, nt.cls, -INFINITY);
   double z_target = -INFINITY;
   uint64_t popped = 0;
   while (!heap.empty()) {
@@ -118,62 +177,7 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
       projected[f] = 1;
       const auto& fv = topo.faces[f];
       const ScreenVertex tri[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
-      if (tri[0].z <= 0 || tri[1].z <= 0 || tri[2].z <= 0) {
-        // Reaches behind the eye: only positive distances are rendered, and
-        // near-plane clipping is not implemented yet — counted, not drawn.
-        ++S.faces_clipped;
-        continue;
-      }
-      const double min_x = std::min({tri[0].x, tri[1].x, tri[2].x}), max_x = std::max({tri[0].x, tri[1].x, tri[2].x});
-      const double min_y = std::min({tri[0].y, tri[1].y, tri[2].y}), max_y = std::max({tri[0].y, tri[1].y, tri[2].y});
-      if (max_x < vp.x0 - 0.5 || min_x > vp.x1 - 0.5 || max_y < vp.y0 - 0.5 || min_y > vp.y1 - 0.5) {
-        ++S.faces_offscreen;
-        continue;
-      }
-      const auto t0 = Clock::now();
-      ScreenTriangle st;
-      const bool ok = setup_triangle(tri, view.perspective(), &st);
-      const auto t1 = Clock::now();
-      S.ms_list_generation += std::chrono::duration<double, std::milli>(t1 - t0).count();
-      if (!ok) {
-        ++S.faces_degenerate;
-        continue;
-      }
-      ++S.faces_projected;
-      frags.clear();
-      ScanCounters sc;
-      scan_bbox(st, vp, frags, sc);
-      S.pixel_tests += sc.pixel_tests;
-      S.pixel_hits += sc.pixel_hits;
-      auto t2 = Clock::now();
-      S.ms_scan_convert += std::chrono::duration<double, std::milli>(t2 - t1).count();
-
-      const uint32_t kind = cls[f] == FaceClass::Entry ? kEntry : cls[f] == FaceClass::Exit ? kExit : kInterior;
-      for (size_t k = 0; k < frags.size(); ++k) {
-        const uint32_t p = uint32_t(frags.y[k] - vp.y0) * vw + uint32_t(frags.x[k] - vp.x0);
-        if (comp.done(p)) continue;  // early-terminated: nothing behind matters
-        const float z = float(frags.z[k] - in.z_origin), s = float(frags.s[k]);
-        if (!lists.insert(p, z, s, kind)) {
-          // Pool at its budget: composite everything already final (before
-          // the sweep plane) everywhere, then retry once.
-          ++S.budget_flushes;
-          S.ms_insert += ms_since(t2);
-          composite_all(z_sweep);
-          t2 = Clock::now();
-          if (!lists.insert(p, z, s, kind))
-            throw std::runtime_error("memory budget too small: " + std::to_string(lists.live_fragments()) +
-                                     " fragments (" + bytes_str(lists.live_fragments() * sizeof(Fragment)) +
-                                     ") must be pending at once in this view");
-        }
-        ++S.fragments;
-        const uint32_t len = lists.length(p);
-        if (len > S.max_list_length) S.max_list_length = len;
-        if (rs.max_list_length && len > rs.max_list_length) {
-          ++S.forced_composites;  // force this pixel's final fragments out now
-          comp.composite(lists, p, z_sweep);
-        }
-      }
-      S.ms_insert += ms_since(t2);
+      project(tri, cls[f], z_sweep);
     }
   }
   progress.add(popped & 4095);
@@ -238,7 +242,7 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
                              " before any fragment)");
   const uint64_t max_fragments = (budget - fixed) / sizeof(Fragment) / uint64_t(threads);
 
-  SweepInput in{topo, rs, view, {}, {}, {}, 0};
+  SweepInput in{topo, rs, view, {}, {}, {}, {}, {}, 0};
   in.sv.resize(mesh.num_points());
   double zmin = INFINITY;
   for (uint32_t v = 0; v < mesh.num_points(); ++v) {
@@ -250,13 +254,21 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
   // their precision when the camera is far from the mesh.
   in.z_origin = std::isfinite(zmin) ? zmin : 0.0;
 
+  // Perspective rays start at the eye: keep a tiny positive near distance so
+  // that projecting never divides by zero. Orthographic rays start on the eye plane.
+  const double z_near = view.perspective() ? 1e-7 * std::max(bounds_of(mesh).diagonal(), 1e-300) : 0.0;
   FaceClassCounts fc;
-  in.cls = classify_faces(mesh, topo, rs.tf, view, &fc);
+  std::vector<uint8_t> tet_visible;
+  in.cls = classify_faces(mesh, topo, rs.tf, view, &fc, &tet_visible);
+  in.clipped.assign(topo.num_faces(), 0);
+  if (std::any_of(in.sv.begin(), in.sv.end(), [&](const ScreenVertex& v) { return !(v.z > z_near); }))
+    clip_at_near_plane(mesh, topo, view, in.sv, in.cls, tet_visible, z_near, &in.near, &in.clipped);
+  S.faces_clipped = uint64_t(std::count(in.clipped.begin(), in.clipped.end(), 1));
   S.tets_invisible = fc.tets_invisible;
   S.tets_degenerate = fc.tets_degenerate;
   S.faces_culled = fc.faces_culled;
   for (uint32_t v = 0; v < mesh.num_points(); ++v) {
-    if (!std::isfinite(in.sv[v].z)) continue;
+    if (!(in.sv[v].z > z_near) || !std::isfinite(in.sv[v].z)) continue;
     for (uint32_t f : topo.use_set(v))
       if (in.cls[f] != FaceClass::Culled) {
         in.events.push_back({in.sv[v].z, v});

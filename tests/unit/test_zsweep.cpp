@@ -275,3 +275,41 @@ TEST(ZSweep, ThreadsGiveBitIdenticalImages) {
 
 }  // namespace
 }  // namespace zs
+
+namespace zs {
+namespace {
+
+// The eye inside the mesh (perspective) and the eye plane through it
+// (orthographic): only the part of each ray at positive distance counts.
+TEST(ZSweep, EyeInsideMeshIntegratesFromTheEye) {
+  const glm::dvec3 lo{-1.0, -0.8, -1.2}, hi{1.1, 0.9, 1.0};
+  const TetMesh m = test::box_mesh({5, 4, 6}, lo, hi, [](const glm::dvec3&) { return 1.0; });
+  const double a = 0.35, unit = 1.0, tau = -std::log(1 - a) / unit;
+  for (Projection proj : {Projection::Perspective, Projection::Orthographic}) {
+    RenderSettings rs;
+    rs.width = 64;
+    rs.height = 48;
+    rs.camera.projection = proj;
+    rs.camera.eye = {0.13, -0.07, 0.21};
+    rs.camera.target = {0.5, 0.2, -1.0};
+    rs.camera.up = {0, 1, 0};
+    rs.camera.fov_y = 70;
+    rs.camera.height = 1.3;
+    rs.tf = TransferFunction({{0, 1, 1, 1}}, {{0, a}}, unit);
+    RenderStats st;
+    const Image img = render_zsweep(m, build_topology(m), rs, &st);
+    EXPECT_GT(st.faces_clipped, 0u);
+    double worst = 0;
+    for (uint32_t j = 0; j < rs.height; ++j)
+      for (uint32_t i = 0; i < rs.width; ++i) {
+        glm::dvec3 o, d;
+        spec_ray(rs.camera, rs.width, rs.height, int(i), int(j), &o, &d);
+        const double L = box_chord(o, d, lo, hi);  // from t = 0: the eye is inside
+        worst = std::max(worst, std::abs(img.at(i, j)[3] - (1 - std::exp(-tau * L))));
+      }
+    EXPECT_LE(worst, 1e-5) << int(proj);
+  }
+}
+
+}  // namespace
+}  // namespace zs

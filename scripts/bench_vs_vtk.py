@@ -1,0 +1,218 @@
+"""zsweep vs VTK's unstructured-grid volume mappers, same mesh/camera/TF/size.
+
+Run through scripts/bench-vs-vtk (it provides python3-vtk9 and a virtual X
+display). Every mesh goes through `zsweep mesh convert` to .vtu first, so both
+renderers see the same tets; the camera and transfer function are computed
+here and given to both. Times are steady-state frames: VTK's first Render()
+(which builds its caches) is discarded; zsweep's time is its render time
+(time_ms.total: view transform, classification, sweep, compositing), without
+mesh loading and topology, which VTK also keeps between frames.
+"""
+import argparse
+import csv
+import datetime
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+
+import vtk
+
+vtk.vtkObject.GlobalWarningDisplayOff()  # VTK ZSweep warns "Undefined edge case" per face
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
+SHARED = os.environ.get("ZSWEEP_SHARED", os.path.join(ROOT, "..", "shared", "datasets"))
+
+MESHES = {
+    "spx": (["spx.off"], None),
+    "blunt": (["bluntfinxyz.bin", "--q", "bluntfinq.bin", "--scalar", "density"], None),
+    "post": (["postxyz.bin", "--q", "postq.bin", "--scalar", "velocity-magnitude"], None),
+}
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw)
+
+
+def mesh_args(name):
+    args = list(MESHES[name][0])
+    args[0] = os.path.join(SHARED, args[0])
+    if "--q" in args:
+        i = args.index("--q") + 1
+        args[i] = os.path.join(SHARED, args[i])
+    return args
+
+
+def scene_for(info, vtu, size):
+    lo, hi = info["bounds"]
+    c = [(a + b) / 2 for a, b in zip(lo, hi)]
+    r = 0.5 * math.dist(lo, hi)
+    smin, smax = info["scalar"]["min"], info["scalar"]["max"]
+    mid = 0.5 * (smin + smax)
+    return {
+        "mesh": {"path": vtu},
+        "image": {"width": size, "height": size, "background": [0, 0, 0, 0]},
+        "camera": {"projection": "orthographic", "eye": [c[0], c[1], c[2] + 4 * r], "target": c,
+                   "up": [0, 1, 0], "height": 2.2 * r},
+        "transfer_function": {
+            "color": [[smin, 0.23, 0.30, 0.75], [mid, 0.87, 0.87, 0.87], [smax, 0.71, 0.02, 0.15]],
+            "opacity": [[smin, 0.0], [smax, 0.6]],
+            "unit_distance": 2 * r / 50,
+        },
+        "render": {"scan": "bbox", "integrator": "exact"},
+    }
+
+
+def time_zsweep(scene_path, out_png, repeat):
+    best = None
+    for _ in range(repeat):
+        stats = out_png + ".stats.json"
+        run([ZSWEEP, "render", scene_path, "-o", out_png, "--threads", "1", "--stats", stats])
+        with open(stats) as f:
+            t = json.load(f)["time_ms"]["total"] / 1000.0
+        best = t if best is None else min(best, t)
+    return best
+
+
+def time_vtk(vtu, scene, mapper_kind, repeat, out_png):
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(vtu)
+    reader.Update()
+    grid = reader.GetOutput()
+    tf = scene["transfer_function"]
+    color = vtk.vtkColorTransferFunction()
+    for s, r, g, b in tf["color"]:
+        color.AddRGBPoint(s, r, g, b)
+    opacity = vtk.vtkPiecewiseFunction()
+    for s, a in tf["opacity"]:
+        opacity.AddPoint(s, a)
+    prop = vtk.vtkVolumeProperty()
+    prop.SetColor(color)
+    prop.SetScalarOpacity(opacity)
+    prop.SetScalarOpacityUnitDistance(tf["unit_distance"])
+    prop.ShadeOff()
+    prop.SetInterpolationTypeToLinear()
+    if mapper_kind == "zsweep":
+        mapper = vtk.vtkUnstructuredGridVolumeZSweepMapper()
+    else:
+        mapper = vtk.vtkUnstructuredGridVolumeRayCastMapper()
+    mapper.SetInputData(grid)
+    volume = vtk.vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    ren = vtk.vtkRenderer()
+    ren.AddVolume(volume)
+    ren.SetBackground(0, 0, 0)
+    win = vtk.vtkRenderWindow()
+    win.SetOffScreenRendering(1)
+    win.AddRenderer(ren)
+    w, h = scene["image"]["width"], scene["image"]["height"]
+    win.SetSize(w, h)
+    cam = ren.GetActiveCamera()
+    c = scene["camera"]
+    cam.SetPosition(*c["eye"])
+    cam.SetFocalPoint(*c["target"])
+    cam.SetViewUp(*c["up"])
+    cam.ParallelProjectionOn()
+    cam.SetParallelScale(c["height"] / 2)
+    ren.ResetCameraClippingRange()
+    win.Render()  # first frame builds VTK's caches; not timed
+    times = []
+    for _ in range(repeat):
+        volume.Modified()  # force the mapper to redraw, as a new view would
+        t0 = time.perf_counter()
+        win.Render()
+        times.append(time.perf_counter() - t0)
+    grab = vtk.vtkWindowToImageFilter()
+    grab.SetInput(win)
+    grab.Update()
+    writer = vtk.vtkPNGWriter()
+    writer.SetFileName(out_png)
+    writer.SetInputConnection(grab.GetOutputPort())
+    writer.Write()
+    return min(times)
+
+
+def cpu_name():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown CPU"
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sizes", default="512,1024")
+    ap.add_argument("--meshes", default="spx,blunt,post")
+    ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--csv", default=os.path.join(ROOT, "docs", "benchmarks.csv"))
+    ap.add_argument("--images", default=os.path.join(ROOT, "build", "bench-vs-vtk"))
+    ap.add_argument("--no-doc", action="store_true", help="do not update docs/benchmarks.md")
+    a = ap.parse_args()
+    os.makedirs(a.images, exist_ok=True)
+    rows = []
+    work = tempfile.mkdtemp(prefix="zsweep-bench-")
+    for name in a.meshes.split(","):
+        vtu = os.path.join(work, name + ".vtu")
+        run([ZSWEEP, "mesh", "convert"] + mesh_args(name) + [vtu])
+        info = json.loads(run([ZSWEEP, "mesh", "info", vtu, "--json"]).stdout)
+        for size in [int(s) for s in a.sizes.split(",")]:
+            scene = scene_for(info, vtu, size)
+            scene_path = os.path.join(work, f"{name}-{size}.json")
+            with open(scene_path, "w") as f:
+                json.dump(scene, f)
+            base = os.path.join(a.images, f"{name}-{size}")
+            ours = time_zsweep(scene_path, base + "-zsweep.png", a.repeat)
+            vz = time_vtk(vtu, scene, "zsweep", a.repeat, base + "-vtk-zsweep.png")
+            vr = time_vtk(vtu, scene, "raycast", a.repeat, base + "-vtk-raycast.png")
+            row = {"mesh": name, "tets": info["tets"], "size": size, "zsweep_s": ours,
+                   "vtk_zsweep_s": vz, "vtk_raycast_s": vr,
+                   "speedup_vs_vtk_zsweep": vz / ours, "speedup_vs_vtk_raycast": vr / ours}
+            rows.append(row)
+            print(f"{name:6s} {size:5d}²  zsweep {ours:7.3f} s   VTK ZSweep {vz:7.3f} s ({vz / ours:5.1f}x)   "
+                  f"VTK ray cast {vr:7.3f} s ({vr / ours:5.2f}x)", flush=True)
+    with open(a.csv, "w", newline="") as f:
+        wr = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        wr.writeheader()
+        wr.writerows(rows)
+    if not a.no_doc:
+        update_doc(rows, a)
+
+
+def update_doc(rows, a):
+    path = os.path.join(ROOT, "docs", "benchmarks.md")
+    lines = [
+        "<!-- bench-vs-vtk:begin (written by scripts/bench-vs-vtk; do not edit by hand) -->",
+        f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores), one thread, "
+        f"`scripts/bench-vs-vtk --sizes {a.sizes} --meshes {a.meshes} --repeat {a.repeat}` "
+        f"(best of {a.repeat} steady-state frames each).",
+        "",
+        "| mesh | tets | size | zsweep (s) | VTK ZSweep (s) | ratio | VTK ray cast (s) | ratio |",
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |",
+    ]
+    for r in rows:
+        lines.append(f"| {r['mesh']} | {r['tets']:,} | {r['size']}² | {r['zsweep_s']:.3f} | {r['vtk_zsweep_s']:.3f} | "
+                     f"{r['speedup_vs_vtk_zsweep']:.1f}× | {r['vtk_raycast_s']:.3f} | {r['speedup_vs_vtk_raycast']:.2f}× |")
+    lines.append("<!-- bench-vs-vtk:end -->")
+    block = "\n".join(lines)
+    text = open(path).read() if os.path.exists(path) else "# Benchmarks\n\n"
+    b, e = "<!-- bench-vs-vtk:begin", "<!-- bench-vs-vtk:end -->"
+    if b in text and e in text:
+        text = text[:text.index(b)] + block + text[text.index(e) + len(e):]
+    else:
+        text = text.rstrip() + "\n\n" + block + "\n"
+    with open(path, "w") as f:
+        f.write(text)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
