@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "mesh/io/vtk_io.h"
+#include "mesh/topology.h"
+#include "mesh/validate.h"
 #include "mesh/mesh_error.h"
 #include "mesh/tet_mesh.h"
 #include "test_paths.h"
@@ -21,6 +23,10 @@
 namespace {
 
 using zs::MeshError;
+using zs::Topology;
+using zs::ValidationReport;
+using zs::build_topology;
+using zs::validate;
 using zs::ReadOptions;
 using zs::TetMesh;
 namespace fs = std::filesystem;
@@ -551,6 +557,12 @@ TEST(Plot3d, BluntFin) {
   EXPECT_EQ(m.num_points(), 40921u);  // 40,960 before merging
   EXPECT_EQ(m.scalar_name, "Density");
   EXPECT_TRUE(has_note(m, "merged 39 duplicate points")) << all_notes(m);
+  // The collapsed grid cells become 77 zero-volume tets, counted not dropped.
+  const Topology topo = build_topology(m);
+  const ValidationReport r = validate(m, topo);
+  EXPECT_EQ(r.zero_volume_tets, 77u);
+  EXPECT_EQ(r.negative_tets, 0u);
+  EXPECT_EQ(r.coincident_boundary_faces, 0u);
   auto [lo, hi] = scalar_range(m);
   std::cout << "bluntfin: zero-volume tets " << zero_volume_tets(m) << ", density [" << lo << ", "
             << hi << "]; " << all_notes(m) << "\n";
@@ -564,6 +576,14 @@ TEST(Plot3d, PostWithIblank) {
   EXPECT_EQ(m.num_points(), 108300u);  // 109,744 before merging
   EXPECT_EQ(m.scalar_name, "VelocityMagnitude");
   EXPECT_TRUE(has_note(m, "IBLANK skipped")) << all_notes(m);
+  // Face count as in the seed's Table 4.1; the O-grid seam is stitched by the
+  // point merge but its two sides split their quads along different
+  // diagonals: 37 x 37 quads, 2 triangles a side, boundary on both sides.
+  const Topology topo = build_topology(m);
+  EXPECT_EQ(topo.num_faces(), 1040588u);
+  const ValidationReport r = validate(m, topo);
+  EXPECT_EQ(r.coincident_boundary_faces, 37u * 37u * 4u);
+  EXPECT_EQ(r.zero_volume_tets, 0u);
   auto [lo, hi] = scalar_range(m);
   EXPECT_LT(lo, hi);
   std::cout << "post: zero-volume tets " << zero_volume_tets(m) << ", |v| [" << lo << ", " << hi
