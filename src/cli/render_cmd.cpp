@@ -32,7 +32,7 @@ struct RenderArgs {
   std::string out, stats;
   int threads = 0;  // 0 = every core
   uint32_t width = 0, height = 0;
-  std::string scan, integrator, projection;
+  std::string scan, variant, integrator, projection;
   double memory_budget_mb = 0;
   double early_termination = -1;
   int64_t max_list_length = -1;
@@ -95,6 +95,10 @@ void write_stats(const std::string& path, const RenderStats& S, const Scene& sce
       {"mesh", {{"points", m.num_points()}, {"tets", m.num_tets()}}},
       {"image", {{"width", scene.settings.width}, {"height", scene.settings.height}}},
       {"scan", to_string(scene.settings.scan)},
+      {"bconvert_variant", to_string(scene.settings.bconvert_variant)},
+      {"bconvert_fallbacks", S.bconvert_fallbacks},
+      {"row_end_misses", {S.row_end_misses[0], S.row_end_misses[1], S.row_end_misses[2], S.row_end_misses[3]}},
+      {"face_to_bbox_area_ratio", S.bbox_area > 0 ? S.face_area / S.bbox_area : 0.0},
       {"integrator", to_string(scene.settings.integrator)},
   };
   AtomicFile out(path);
@@ -122,6 +126,8 @@ void run(const RenderArgs& a) {
   if (a.height) rs.height = a.height;
   if (!a.scan.empty() && !parse_scan_strategy(a.scan, &rs.scan))
     throw std::runtime_error("--scan must be bbox, bconvert or span");
+  if (!a.variant.empty() && !parse_bconvert_variant(a.variant, &rs.bconvert_variant))
+    throw std::runtime_error("--variant must be truncate, round, dilate, dda3d or runlength");
   if (!a.integrator.empty() && !parse_integrator(a.integrator, &rs.integrator))
     throw std::runtime_error("--integrator must be exact, linear or preintegrated");
   if (a.memory_budget_mb > 0) rs.memory_budget_bytes = uint64_t(a.memory_budget_mb * 1048576.0);
@@ -171,6 +177,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--width", a->width, "Override image width")->check(CLI::Range(1u, 1u << 20));
   cmd->add_option("--height", a->height, "Override image height")->check(CLI::Range(1u, 1u << 20));
   cmd->add_option("--scan", a->scan, "Scan strategy: bbox, bconvert, span");
+  cmd->add_option("--variant", a->variant, "B-Convert variant: truncate, round, dilate, dda3d, runlength");
   cmd->add_option("--integrator", a->integrator, "exact, linear or preintegrated");
   cmd->add_option("--projection", a->projection, "Automatic camera: orthographic (default) or perspective");
   cmd->add_option("--memory-budget", a->memory_budget_mb, "Memory budget in MiB (default: half of physical memory)");

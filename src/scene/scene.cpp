@@ -197,7 +197,13 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
 
   if (j.contains("render")) {
     const json& r = j["render"];
-    check_keys(c, r, "render", {"scan", "integrator", "early_termination", "max_list_length", "memory_budget_mb"});
+    check_keys(c, r, "render",
+               {"scan", "bconvert_variant", "integrator", "early_termination", "max_list_length", "memory_budget_mb"});
+    if (r.contains("bconvert_variant")) {
+      if (!r["bconvert_variant"].is_string() ||
+          !parse_bconvert_variant(r["bconvert_variant"].get<std::string>(), &rs.bconvert_variant))
+        c.fail("render.bconvert_variant must be \"truncate\", \"round\", \"dilate\", \"dda3d\" or \"runlength\"");
+    }
     if (r.contains("scan")) {
       if (!r["scan"].is_string() || !parse_scan_strategy(r["scan"].get<std::string>(), &rs.scan))
         c.fail("render.scan must be \"bbox\", \"bconvert\" or \"span\"");

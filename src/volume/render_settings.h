@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "raster/bconvert_scan.h"
 #include "scene/camera.h"
 #include "volume/segment_integrator.h"
 #include "volume/transfer_function.h"
@@ -21,6 +22,7 @@ struct RenderSettings {
   Camera camera;
   TransferFunction tf;
   ScanStrategy scan = ScanStrategy::BBox;
+  BConvertVariant bconvert_variant = BConvertVariant::Truncate;
   Integrator integrator = Integrator::Exact;
   // Early termination threshold t in 8-bit levels: stop a pixel once its
   // transmittance is below t/510, which bounds the error by t/2 levels

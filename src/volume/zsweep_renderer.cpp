@@ -15,6 +15,8 @@
 #include <tbb/parallel_for.h>
 
 #include "raster/bbox_scan.h"
+#include "raster/bconvert_scan.h"
+#include "raster/span_scan.h"
 #include "raster/screen_triangle.h"
 #include "util/progress.h"
 #include "volume/compositor.h"
@@ -68,6 +70,10 @@ void add_stats(RenderStats& a, const RenderStats& b) {
   a.segments += b.segments;
   a.early_terminated_pixels += b.early_terminated_pixels;
   a.peak_fragments += b.peak_fragments;
+  a.bconvert_fallbacks += b.bconvert_fallbacks;
+  for (int k = 0; k < 4; ++k) a.row_end_misses[k] += b.row_end_misses[k];
+  a.face_area += b.face_area;
+  a.bbox_area += b.bbox_area;
 }
 
 // One sweep over the whole mesh for the pixels of `vp` (digest §1.2).
@@ -96,6 +102,7 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
   };
 
   FaceFragments frags;
+  BConvertScratch bscratch;
   // Scan-converts one triangle and inserts its fragments (z_sweep: the depth
   // before which every fragment is final, for forced compositing).
   auto project = [&](const ScreenVertex tri[3], FaceClass fclass, float z_sweep) {
@@ -105,9 +112,16 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
       ++S.faces_offscreen;
       return;
     }
+    // list_generation: per-face set-up (plane equations; B-Convert's edge
+    // and compact lists); scan_convert: the pixel loop.
     const auto t0 = Clock::now();
     ScreenTriangle st;
     const bool ok = setup_triangle(tri, view.perspective(), &st);
+    bool use_bconvert = ok && rs.scan == ScanStrategy::BConvert;
+    if (use_bconvert && !bconvert_list(tri, rs.bconvert_variant, vp, bscratch)) {
+      use_bconvert = false;
+      ++S.bconvert_fallbacks;
+    }
     const auto t1 = Clock::now();
     S.ms_list_generation += std::chrono::duration<double, std::milli>(t1 - t0).count();
     if (!ok) {
@@ -115,9 +129,27 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
       return;
     }
     ++S.faces_projected;
+    // Heron's formula on the screen edges (Eqs. 4.1-4.3) and the box area,
+    // for the face / bounding-box ratio of Table 4.4.
+    {
+      const double e0 = std::hypot(tri[1].x - tri[0].x, tri[1].y - tri[0].y);
+      const double e1 = std::hypot(tri[2].x - tri[1].x, tri[2].y - tri[1].y);
+      const double e2 = std::hypot(tri[0].x - tri[2].x, tri[0].y - tri[2].y);
+      const double hs = 0.5 * (e0 + e1 + e2);
+      S.face_area += std::sqrt(std::max(0.0, hs * (hs - e0) * (hs - e1) * (hs - e2)));
+      S.bbox_area += (st.max_x - st.min_x) * (st.max_y - st.min_y);
+    }
     frags.clear();
     ScanCounters sc;
-    scan_bbox(st, vp, frags, sc);
+    if (use_bconvert) {
+      RowEndMisses re;
+      bconvert_scan(st, vp, bscratch, frags, sc, &re);
+      for (int k = 0; k < 4; ++k) S.row_end_misses[k] += re.count[k];
+    } else if (rs.scan == ScanStrategy::Span) {
+      scan_span(st, vp, frags, sc);
+    } else {
+      scan_bbox(st, vp, frags, sc);
+    }
     S.pixel_tests += sc.pixel_tests;
     S.pixel_hits += sc.pixel_hits;
     auto t2 = Clock::now();
@@ -222,8 +254,6 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
   RenderStats& S = st ? *st : local;
   S = RenderStats{};
   if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
-  if (rs.scan != ScanStrategy::BBox)
-    throw std::runtime_error(std::string("scan strategy '") + to_string(rs.scan) + "' is not implemented yet");
 
   const View view(rs.camera, rs.width, rs.height);
   const int threads = std::max(1, rs.threads);

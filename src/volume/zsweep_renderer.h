@@ -23,6 +23,9 @@ struct RenderStats {
   uint64_t max_list_length = 0, forced_composites = 0, budget_flushes = 0;
   uint64_t composite_events = 0, segments = 0, early_terminated_pixels = 0;
   uint64_t peak_fragments = 0, peak_rss_bytes = 0, memory_budget_bytes = 0;
+  uint64_t bconvert_fallbacks = 0;  // faces too large for B-Convert, scanned by bounding box
+  uint64_t row_end_misses[4] = {0, 0, 0, 0};  // B-Convert rows ends with 0, 1, 2, 3+ false pixels
+  double face_area = 0, bbox_area = 0;        // summed over projected faces, in pixels (Table 4.4)
 };
 
 // Throws std::runtime_error when the memory budget cannot hold the image state
