@@ -69,7 +69,7 @@ void add_stats(RenderStats& a, const RenderStats& b) {
   a.composite_events += b.composite_events;
   a.segments += b.segments;
   a.early_terminated_pixels += b.early_terminated_pixels;
-  a.peak_fragments += b.peak_fragments;
+  a.peak_fragments = std::max(a.peak_fragments, b.peak_fragments);  // per band
   a.bconvert_fallbacks += b.bconvert_fallbacks;
   for (int k = 0; k < 4; ++k) a.row_end_misses[k] += b.row_end_misses[k];
   a.face_area += b.face_area;
@@ -78,7 +78,7 @@ void add_stats(RenderStats& a, const RenderStats& b) {
 
 // One sweep over the whole mesh for the pixels of `vp` (digest §1.2).
 void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments, const SegmentIntegrator& integ,
-                Image& img, RenderStats& S, Progress& progress) {
+                std::vector<float>& band, RenderStats& S, Progress& progress) {
   const Topology& topo = in.topo;
   const RenderSettings& rs = in.rs;
   const View& view = in.view;
@@ -219,10 +219,11 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
   S.peak_fragments += lists.peak_fragments();
 
   // out = I + (1 - alpha)·background, alpha = 1 - T (premultiplied).
+  band.resize(size_t(npix) * 4);
   for (uint32_t p = 0; p < npix; ++p) {
     const double T = comp.transmittance(p);
     const double* c = comp.rgb(p);
-    float* o = img.at(uint32_t(vp.x0) + p % vw, uint32_t(vp.y0) + p / vw);
+    float* o = &band[size_t(p) * 4];
     for (int k = 0; k < 3; ++k) o[k] = float(c[k] + T * rs.background[k]);
     o[3] = float((1.0 - T) + T * rs.background[3]);
     if (T < 1.0) ++S.rendered_pixels;
@@ -236,10 +237,32 @@ uint64_t default_memory_budget() {
   return pages > 0 && size > 0 ? uint64_t(pages) * uint64_t(size) / 2 : (uint64_t(4) << 30);
 }
 
-uint64_t zsweep_state_bytes(size_t num_points, size_t num_faces, uint32_t width, uint32_t height) {
-  const uint64_t per_pixel = 3 * 8 + 8 + 4 + 4 + 4 + 1 /*compositor*/ + 4 * 3 + 1 /*lists*/ + 16 /*image*/;
-  const uint64_t per_point = sizeof(ScreenVertex) + sizeof(VertexHeap::Entry);
-  return uint64_t(width) * height * per_pixel + num_points * per_point + num_faces * 2 /*class, projected*/;
+uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces) {
+  const uint64_t per_point = sizeof(ScreenVertex) + 2 * sizeof(VertexHeap::Entry);
+  return num_points * per_point + num_faces * 2 /*class, clipped*/;
+}
+
+BandPlan plan_bands(uint64_t budget, size_t num_points, size_t num_faces, uint32_t width, uint32_t height,
+                    int threads, uint64_t sink_bytes) {
+  threads = std::max(1, threads);
+  const uint64_t shared = zsweep_shared_bytes(num_points, num_faces) + sink_bytes +
+                          uint64_t(threads) * num_faces /*projected flags*/;
+  const uint64_t row_bytes = kBytesPerPixel * width;
+  if (shared + uint64_t(threads) * 2 * row_bytes >= budget)
+    throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " + std::to_string(width) +
+                             "x" + std::to_string(height) + " render of this mesh (needs more than " +
+                             bytes_str(shared + uint64_t(threads) * 2 * row_bytes) + ")");
+  const uint64_t per_band_state = (budget - shared) / 2 / uint64_t(threads);
+  // Several bands per thread balance uneven bands; more when one band's pixel
+  // state would not fit. Per-pixel results do not depend on the banding.
+  BandPlan p;
+  p.bands = threads == 1 ? 1 : std::min<uint64_t>(height, uint64_t(4) * threads);
+  const uint64_t rows_fit = std::max<uint64_t>(1, per_band_state / row_bytes);
+  p.bands = std::max(p.bands, (uint64_t(height) + rows_fit - 1) / rows_fit);
+  p.band_rows = (uint64_t(height) + p.bands - 1) / p.bands;
+  p.bands = (uint64_t(height) + p.band_rows - 1) / p.band_rows;
+  p.max_fragments = (budget - shared - uint64_t(threads) * p.band_rows * row_bytes) / sizeof(Fragment) / uint64_t(threads);
+  return p;
 }
 
 uint64_t peak_rss_bytes() {
@@ -248,7 +271,8 @@ uint64_t peak_rss_bytes() {
   return uint64_t(u.ru_maxrss) * 1024;
 }
 
-Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs, RenderStats* st) {
+void render_zsweep_bands(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs, BandSink& sink,
+                         uint64_t sink_bytes, RenderStats* st) {
   const auto t_start = Clock::now();
   RenderStats local;
   RenderStats& S = st ? *st : local;
@@ -257,20 +281,12 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
 
   const View view(rs.camera, rs.width, rs.height);
   const int threads = std::max(1, rs.threads);
-  // Sort-first tiles: row bands, each swept independently over the faces
-  // that touch it. Several bands per thread balance uneven bands; one band
-  // when single-threaded. Per-pixel results do not depend on the tiling.
-  const int bands = threads == 1 ? 1 : std::min<int>(int(rs.height), 4 * threads);
-
   const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
   S.memory_budget_bytes = budget;
-  const uint64_t fixed = zsweep_state_bytes(mesh.num_points(), topo.num_faces(), rs.width, rs.height) +
-                         uint64_t(threads - 1) * topo.num_faces();
-  if (fixed >= budget)
-    throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " + std::to_string(rs.width) +
-                             "x" + std::to_string(rs.height) + " image (needs " + bytes_str(fixed) +
-                             " before any fragment)");
-  const uint64_t max_fragments = (budget - fixed) / sizeof(Fragment) / uint64_t(threads);
+  const BandPlan plan = plan_bands(budget, mesh.num_points(), topo.num_faces(), rs.width, rs.height, threads, sink_bytes);
+  const uint64_t bands = plan.bands, band_rows = plan.band_rows, max_fragments = plan.max_fragments;
+  S.bands = bands;
+  S.fragment_capacity = max_fragments;
 
   SweepInput in{topo, rs, view, {}, {}, {}, {}, {}, 0};
   in.sv.resize(mesh.num_points());
@@ -308,18 +324,23 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
   const SegmentIntegrator integ(rs.tf, rs.integrator);
   S.ms_setup = ms_since(t_start);
 
-  Image img(rs.width, rs.height);
   Progress progress("render", uint64_t(in.events.size()) * bands, rs.progress);
   std::vector<RenderStats> tile_stats(bands);
-  auto run_band = [&](int b) {
-    const int y0 = int(uint64_t(rs.height) * b / bands), y1 = int(uint64_t(rs.height) * (b + 1) / bands);
-    sweep_tile(in, Viewport{0, y0, int(rs.width), y1}, max_fragments, integ, img, tile_stats[b], progress);
+  std::mutex sink_mu;
+  auto run_band = [&](uint64_t b) {
+    const int y0 = int(std::min<uint64_t>(rs.height, b * band_rows));
+    const int y1 = int(std::min<uint64_t>(rs.height, (b + 1) * band_rows));
+    if (y0 >= y1) return;
+    std::vector<float> buf;
+    sweep_tile(in, Viewport{0, y0, int(rs.width), y1}, max_fragments, integ, buf, tile_stats[b], progress);
+    std::lock_guard<std::mutex> lock(sink_mu);
+    sink.band(uint32_t(y0), uint32_t(y1), buf.data());
   };
-  if (bands == 1) {
-    run_band(0);
+  if (bands == 1 || threads == 1) {
+    for (uint64_t b = 0; b < bands; ++b) run_band(b);
   } else {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    tbb::parallel_for(0, bands, run_band);
+    tbb::parallel_for(uint64_t(0), bands, run_band);
   }
   progress.finish();
   for (const RenderStats& t : tile_stats) {
@@ -328,7 +349,24 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
   }
   S.peak_rss_bytes = peak_rss_bytes();
   S.ms_total = ms_since(t_start);
-  return img;
+}
+
+Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs, RenderStats* st) {
+  struct ImageSink : BandSink {
+    Image img;
+    void band(uint32_t y0, uint32_t y1, const float* rgba) override {
+      std::copy(rgba, rgba + size_t(y1 - y0) * img.width * 4, img.at(0, y0));
+    }
+  } sink;
+  if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
+  const uint64_t image_bytes = uint64_t(rs.width) * rs.height * 16;
+  const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
+  if (image_bytes >= budget)
+    throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " + std::to_string(rs.width) +
+                             "x" + std::to_string(rs.height) + " float image (" + bytes_str(image_bytes) + ")");
+  sink.img = Image(rs.width, rs.height);
+  render_zsweep_bands(mesh, topo, rs, sink, image_bytes, st);
+  return std::move(sink.img);
 }
 
 }  // namespace zs
