@@ -11,5 +11,6 @@ void add_mesh_info_command(CLI::App& mesh);
 void add_mesh_convert_command(CLI::App& mesh);
 void add_mesh_generate_command(CLI::App& mesh);
 void add_render_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 
 }  // namespace zs

@@ -32,6 +32,9 @@ struct RenderSettings {
   uint64_t memory_budget_bytes = 0;     // 0 = default (half of physical memory)
   int threads = 1;
   bool progress = false;                // progress bar on stderr
+  // Benchmarks: scan-convert every face but keep no fragments (no lists, no
+  // compositing; the image is the background).
+  bool raster_only = false;
 };
 
 }  // namespace zs

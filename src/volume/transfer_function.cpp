@@ -55,7 +55,23 @@ TransferFunction::TransferFunction(std::vector<ColorPoint> color, std::vector<Op
   for (const auto& p : opacity_) bs_.push_back(p.s);
   std::sort(bs_.begin(), bs_.end());
   bs_.erase(std::unique(bs_.begin(), bs_.end()), bs_.end());
+  // Both colour and opacity are linear between merged breakpoints, so their
+  // values there define them everywhere.
+  for (double b : bs_) {
+    const auto c = this->color(b);  // the parameters shadow the members here
+    at_bs_.push_back({c[0], c[1], c[2], this->opacity(b)});
+  }
 }
+
+std::array<double, 4> TransferFunction::rgba_in(int k, double s) const {
+  if (k < 0) return at_bs_.front();
+  if (size_t(k) + 1 >= bs_.size()) return at_bs_.back();
+  const double t = (s - bs_[size_t(k)]) / (bs_[size_t(k) + 1] - bs_[size_t(k)]);
+  const auto &a = at_bs_[size_t(k)], &b = at_bs_[size_t(k) + 1];
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]), a[3] + t * (b[3] - a[3])};
+}
+
+std::array<double, 4> TransferFunction::rgba(double s) const { return rgba_in(interval(s), s); }
 
 std::array<double, 3> TransferFunction::color(double s) const {
   return {lerp_points(color_, s, [](const ColorPoint& p) { return p.r; }),

@@ -32,6 +32,12 @@ class TransferFunction {
   const std::vector<double>& breakpoints() const { return bs_; }
   double unit_distance() const { return unit_; }
 
+  // Colour and opacity at s with one search: {r, g, b, a}.
+  std::array<double, 4> rgba(double s) const;
+  // The same inside a known interval k (interval(s) == k); no search.
+  std::array<double, 4> rgba_in(int k, double s) const;
+  // Exact values at breakpoint k.
+  const std::array<double, 4>& rgba_at_breakpoint(int k) const { return at_bs_[size_t(k)]; }
   std::array<double, 3> color(double s) const;
   double opacity(double s) const;  // clamped to [0, kMaxOpacity]
   // Extinction per unit length: -ln(1 - a(s)) / unit_distance.
@@ -48,6 +54,7 @@ class TransferFunction {
   std::vector<ColorPoint> color_;
   std::vector<OpacityPoint> opacity_;
   std::vector<double> bs_;
+  std::vector<std::array<double, 4>> at_bs_;  // colour and opacity at each breakpoint
   double unit_ = 1.0;
 };
 

@@ -154,6 +154,7 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
     S.pixel_hits += sc.pixel_hits;
     auto t2 = Clock::now();
     S.ms_scan_convert += std::chrono::duration<double, std::milli>(t2 - t1).count();
+    if (rs.raster_only) return;
 
     const uint32_t kind = fclass == FaceClass::Entry ? kEntry : fclass == FaceClass::Exit ? kExit : kInterior;
     for (size_t k = 0; k < frags.size(); ++k) {

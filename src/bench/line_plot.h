@@ -1,0 +1,24 @@
+// Small PNG line plots for benchmark figures (log or linear axes, legend),
+// drawn with OpenImageIO's line and text rendering (DejaVu Sans).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace zs {
+
+struct PlotSeries {
+  std::string name;
+  std::vector<double> x, y;
+};
+
+struct PlotSpec {
+  std::string title, xlabel, ylabel;
+  bool log_x = true, log_y = true;
+  int width = 900, height = 600;
+};
+
+// Throws std::runtime_error naming the file when it cannot be written.
+void write_line_plot(const std::string& path, const PlotSpec& spec, const std::vector<PlotSeries>& series);
+
+}  // namespace zs

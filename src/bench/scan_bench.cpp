@@ -1,0 +1,183 @@
+#include "bench/scan_bench.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <stdexcept>
+
+#include "mesh/io/mesh_io.h"
+#include "mesh/topology.h"
+#include "scene/scene.h"
+#include "util/atomic_file.h"
+#include "volume/zsweep_renderer.h"
+
+namespace zs {
+
+namespace {
+
+// Rotation (0, 0, 0) as in the seed: orthographic down -z, y up, the mesh's
+// x/y extent filling the image with one common scale (digest §3.1).
+Camera seed_camera(const TetMesh& m, uint32_t w, uint32_t h) {
+  const Bounds b = bounds_of(m);
+  Camera c;
+  c.projection = Projection::Orthographic;
+  const glm::dvec3 mid = 0.5 * (b.lo + b.hi);
+  const double ex = b.hi.x - b.lo.x, ey = b.hi.y - b.lo.y;
+  c.height = 1.01 * std::max(ey, ex * double(h) / double(w));
+  if (!(c.height > 0)) c.height = 1;
+  c.target = mid;
+  c.eye = {mid.x, mid.y, b.hi.z + 0.1 * std::max(b.diagonal(), 1e-300)};
+  c.up = {0, 1, 0};
+  return c;
+}
+
+// Every cell visible (opacity > 0 everywhere), so every face is projected as in the seed.
+TransferFunction bench_tf(const TetMesh& m) {
+  const TransferFunction d = default_transfer_function(m);
+  const double lo = d.color_points().front().s, hi = d.color_points().back().s;
+  return TransferFunction(d.color_points(), {{lo, 0.05}, {hi, 0.6}}, d.unit_distance());
+}
+
+std::string stem(const std::string& p) { return std::filesystem::path(p).stem().string(); }
+
+// Compares bands against a reference image without keeping a second one.
+struct DiffSink : BandSink {
+  const Image* ref = nullptr;
+  Image* keep = nullptr;
+  double max_diff = 0;
+  void band(uint32_t y0, uint32_t y1, const float* rgba) override {
+    const size_t n = size_t(y1 - y0) * (ref ? ref->width : keep->width) * 4;
+    if (ref) {
+      const float* r = ref->at(0, y0);
+      for (size_t k = 0; k < n; ++k) max_diff = std::max(max_diff, double(std::abs(rgba[k] - r[k])));
+    }
+    if (keep) std::copy(rgba, rgba + n, keep->at(0, y0));
+  }
+};
+
+struct NullSink : BandSink {
+  void band(uint32_t, uint32_t, const float*) override {}
+};
+
+}  // namespace
+
+std::vector<ScanBenchRow> run_scan_bench(const ScanBenchOptions& opt) {
+  std::vector<ScanBenchRow> rows;
+  const uint64_t budget = opt.memory_budget_bytes ? opt.memory_budget_bytes : default_memory_budget();
+  for (const std::string& input : opt.inputs) {
+    Scene scene;
+    if (input.size() > 5 && input.substr(input.size() - 5) == ".json") {
+      scene = load_scene(input);
+    } else {
+      scene.mesh_path = input;
+    }
+    const TetMesh mesh = read_mesh(scene.mesh_path, scene.mesh_options);
+    const Topology topo = build_topology(mesh);
+    const std::string name = stem(input);
+    for (uint32_t size : opt.sizes) {
+      RenderSettings rs = scene.settings;
+      rs.width = rs.height = size;
+      rs.threads = 1;
+      rs.memory_budget_bytes = budget;
+      rs.progress = false;
+      rs.raster_only = size > opt.raster_only_above;
+      if (!scene.has_camera) rs.camera = seed_camera(mesh, size, size);
+      if (!scene.has_transfer_function) rs.tf = bench_tf(mesh);
+      // The bounding box first: the reference for missing pixels and images.
+      const uint64_t img_bytes = uint64_t(size) * size * 16;
+      const bool keep = img_bytes * 3 < budget && !rs.raster_only;
+      Image ref;
+      uint64_t ref_hits = 0;
+      std::vector<std::pair<ScanStrategy, BConvertVariant>> runs{{ScanStrategy::BBox, BConvertVariant::Truncate}};
+      for (ScanStrategy s : opt.strategies) {
+        if (s == ScanStrategy::BBox) continue;
+        if (s == ScanStrategy::BConvert)
+          for (BConvertVariant v : opt.variants) runs.push_back({s, v});
+        else
+          runs.push_back({s, BConvertVariant::Truncate});
+      }
+      const bool bbox_wanted = std::count(opt.strategies.begin(), opt.strategies.end(), ScanStrategy::BBox) > 0;
+      for (const auto& [strategy, variant] : runs) {
+        rs.scan = strategy;
+        rs.bconvert_variant = variant;
+        ScanBenchRow row;
+        row.mesh = name;
+        row.size = size;
+        row.strategy = to_string(strategy);
+        row.variant = strategy == ScanStrategy::BConvert ? to_string(variant) : "-";
+        for (int r = 0; r < std::max(1, opt.repeat); ++r) {
+          RenderStats st;
+          DiffSink sink;
+          const bool is_ref = strategy == ScanStrategy::BBox;
+          if (keep && is_ref && r == 0) {
+            ref = Image(size, size);
+            sink.keep = &ref;
+          } else if (keep && !is_ref) {
+            sink.ref = &ref;
+          }
+          NullSink null;
+          BandSink& target = (sink.keep || sink.ref) ? static_cast<BandSink&>(sink) : static_cast<BandSink&>(null);
+          render_zsweep_bands(mesh, topo, rs, target, keep ? img_bytes * 2 : 0, &st);
+          const double total = st.ms_list_generation + st.ms_scan_convert;
+          if (r == 0 || total < row.total_ms) {
+            row.list_generation_ms = st.ms_list_generation;
+            row.scan_convert_ms = st.ms_scan_convert;
+            row.total_ms = total;
+          }
+          row.render_ms = rs.raster_only ? -1 : r == 0 ? st.ms_total : std::min(row.render_ms, st.ms_total);
+          row.pixel_tests = st.pixel_tests;
+          row.pixel_hits = st.pixel_hits;
+          row.pixel_misses = st.pixel_tests - std::min(st.pixel_tests, st.pixel_hits);
+          row.rendered_pixels = st.rendered_pixels;
+          row.faces_projected = st.faces_projected;
+          row.bconvert_fallbacks = st.bconvert_fallbacks;
+          row.face_to_bbox_area_ratio = st.bbox_area > 0 ? st.face_area / st.bbox_area : 0;
+          row.mean_face_area_px = st.faces_projected ? st.face_area / double(st.faces_projected) : 0;
+          for (int k = 0; k < 4; ++k) row.row_end_misses[k] = st.row_end_misses[k];
+          if (keep) row.image_max_abs_diff = is_ref ? 0.0 : sink.max_diff;
+        }
+        if (strategy == ScanStrategy::BBox) ref_hits = row.pixel_hits;
+        row.missing_pixels = ref_hits > row.pixel_hits ? ref_hits - row.pixel_hits : 0;
+        if (strategy != ScanStrategy::BBox || bbox_wanted) rows.push_back(row);
+        if (opt.progress)
+          std::fprintf(stderr, "%s %u² %s%s%s: list %.1f ms, scan %.1f ms, render %.1f ms, hits %llu, missing %llu\n",
+                       name.c_str(), size, row.strategy.c_str(), row.variant == "-" ? "" : "/",
+                       row.variant == "-" ? "" : row.variant.c_str(), row.list_generation_ms, row.scan_convert_ms,
+                       row.render_ms, (unsigned long long)row.pixel_hits, (unsigned long long)row.missing_pixels);
+      }
+    }
+  }
+  return rows;
+}
+
+void write_scan_bench_csv(const std::string& path, const std::vector<ScanBenchRow>& rows) {
+  AtomicFile out(path);
+  {
+    std::ofstream f(out.temp_path());
+    f << "mesh,size,strategy,variant,list_generation_ms,scan_convert_ms,total_ms,pixel_tests,pixel_hits,"
+         "pixel_misses,missing_pixels,rendered_pixels,image_max_abs_diff,face_to_bbox_area_ratio,render_ms,"
+         "mean_face_area_px,faces_projected,bconvert_fallbacks,row_end_0,row_end_1,row_end_2,row_end_3plus\n";
+    for (const auto& r : rows) {
+      char buf[1024];
+      std::snprintf(buf, sizeof buf, "%s,%u,%s,%s,%.3f,%.3f,%.3f,%llu,%llu,%llu,%llu,%llu,%s,%.4f,%.3f,%.3f,%llu,%llu,%llu,%llu,%llu,%llu\n",
+                    r.mesh.c_str(), r.size, r.strategy.c_str(), r.variant.c_str(), r.list_generation_ms,
+                    r.scan_convert_ms, r.total_ms, (unsigned long long)r.pixel_tests,
+                    (unsigned long long)r.pixel_hits, (unsigned long long)r.pixel_misses,
+                    (unsigned long long)r.missing_pixels, (unsigned long long)r.rendered_pixels,
+                    r.image_max_abs_diff < 0 ? "" : std::to_string(r.image_max_abs_diff).c_str(),
+                    r.face_to_bbox_area_ratio, r.render_ms, r.mean_face_area_px,
+                    (unsigned long long)r.faces_projected, (unsigned long long)r.bconvert_fallbacks,
+                    (unsigned long long)r.row_end_misses[0], (unsigned long long)r.row_end_misses[1],
+                    (unsigned long long)r.row_end_misses[2], (unsigned long long)r.row_end_misses[3]);
+      f << buf;
+    }
+    if (!f) throw std::runtime_error(path + ": cannot write CSV");
+  }
+  out.commit();
+}
+
+}  // namespace zs
