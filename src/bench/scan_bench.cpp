@@ -131,7 +131,7 @@ std::vector<ScanBenchRow> run_scan_bench(const ScanBenchOptions& opt) {
           row.render_ms = rs.raster_only ? -1 : r == 0 ? st.ms_total : std::min(row.render_ms, st.ms_total);
           row.pixel_tests = st.pixel_tests;
           row.pixel_hits = st.pixel_hits;
-          row.pixel_misses = st.pixel_tests - std::min(st.pixel_tests, st.pixel_hits);
+          row.pixel_misses = st.pixel_misses;
           row.rendered_pixels = st.rendered_pixels;
           row.faces_projected = st.faces_projected;
           row.bconvert_fallbacks = st.bconvert_fallbacks;

@@ -74,6 +74,7 @@ void write_stats(const std::string& path, const RenderStats& S, const Scene& sce
         {"topology", ms_topology}}},
       {"pixel_tests", S.pixel_tests},
       {"pixel_hits", S.pixel_hits},
+      {"pixel_misses", S.pixel_misses},
       {"fragments", S.fragments},
       {"rendered_pixels", S.rendered_pixels},
       {"faces_projected", S.faces_projected},

@@ -26,6 +26,7 @@ void scan_bbox(const ScreenTriangle& t, const Viewport& vp, FaceFragments& out, 
     }
   }
   c.pixel_hits += out.size() - before;
+  c.pixel_misses += uint64_t(i1 - i0 + 1) * uint64_t(j1 - j0 + 1) - (out.size() - before);
 }
 
 }  // namespace zs

@@ -58,12 +58,14 @@ void bconvert_scan(const ScreenTriangle& t, const Viewport& vp, BConvertScratch&
                    ScanCounters& c, RowEndMisses* row_ends) {
   const CompactList& L = s.list;
   const size_t before = out.size();
+  uint64_t tested = 0;
   const int32_t j0 = std::max(L.y0, int32_t(vp.y0)), j1 = std::min(L.y1, int32_t(vp.y1 - 1));
   for (int32_t j = j0; j <= j1; ++j) {
     const size_t r = size_t(j - L.y0);
     const int32_t i0 = std::max(L.xi[r], int32_t(vp.x0)), i1 = std::min(L.xf[r], int32_t(vp.x1 - 1));
     if (i0 > i1) continue;
     c.pixel_tests += uint64_t(i1 - i0 + 1);
+    tested += uint64_t(i1 - i0 + 1);
     int32_t first = -1, last = -1;
     for (int32_t i = i0; i <= i1; ++i) {
       if (!t.inside(i, j)) continue;
@@ -83,6 +85,7 @@ void bconvert_scan(const ScreenTriangle& t, const Viewport& vp, BConvertScratch&
     }
   }
   c.pixel_hits += out.size() - before;
+  c.pixel_misses += tested - (out.size() - before);
 }
 
 }  // namespace zs

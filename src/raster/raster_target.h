@@ -17,11 +17,13 @@ struct Viewport {
 };
 
 struct ScanCounters {
-  uint64_t pixel_tests = 0;  // inside tests performed (or pixels enumerated)
-  uint64_t pixel_hits = 0;   // fragments produced
+  uint64_t pixel_tests = 0;   // inside tests performed
+  uint64_t pixel_hits = 0;    // fragments produced ("intercepta")
+  uint64_t pixel_misses = 0;  // tests that failed ("não intercepta")
   void operator+=(const ScanCounters& o) {
     pixel_tests += o.pixel_tests;
     pixel_hits += o.pixel_hits;
+    pixel_misses += o.pixel_misses;
   }
 };
 

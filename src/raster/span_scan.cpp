@@ -9,10 +9,12 @@ void scan_span(const ScreenTriangle& t, const Viewport& vp, FaceFragments& out, 
   const int j0 = std::max(vp.y0, int(std::ceil(std::clamp(t.min_y, double(vp.y0) - 1, double(vp.y1) + 1))));
   const int j1 = std::min(vp.y1 - 1, int(std::floor(std::clamp(t.max_y, double(vp.y0) - 1, double(vp.y1) + 1))));
   const size_t before = out.size();
-  uint64_t tests = 0;
+  uint64_t tests = 0, fails = 0;
   auto inside = [&](int i, int j) {
     ++tests;
-    return t.inside(i, j);
+    const bool in = t.inside(i, j);
+    fails += !in;
+    return in;
   };
   for (int j = j0; j <= j1; ++j) {
     // Solve sign·E_k(X, j) >= 0 for X: E = dx·(j - ay) - dy·(X - ax).
@@ -61,6 +63,7 @@ void scan_span(const ScreenTriangle& t, const Viewport& vp, FaceFragments& out, 
     }
   }
   c.pixel_tests += tests;
+  c.pixel_misses += fails;
   c.pixel_hits += out.size() - before;
 }
 

@@ -59,6 +59,7 @@ void add_stats(RenderStats& a, const RenderStats& b) {
   a.ms_composite += b.ms_composite;
   a.pixel_tests += b.pixel_tests;
   a.pixel_hits += b.pixel_hits;
+  a.pixel_misses += b.pixel_misses;
   a.fragments += b.fragments;
   a.faces_projected += b.faces_projected;
   a.faces_offscreen += b.faces_offscreen;
@@ -152,6 +153,7 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
     }
     S.pixel_tests += sc.pixel_tests;
     S.pixel_hits += sc.pixel_hits;
+    S.pixel_misses += sc.pixel_misses;
     auto t2 = Clock::now();
     S.ms_scan_convert += std::chrono::duration<double, std::milli>(t2 - t1).count();
     if (rs.raster_only) return;

@@ -17,7 +17,7 @@ namespace zs {
 
 struct RenderStats {
   double ms_total = 0, ms_setup = 0, ms_list_generation = 0, ms_scan_convert = 0, ms_insert = 0, ms_composite = 0;
-  uint64_t pixel_tests = 0, pixel_hits = 0, fragments = 0, rendered_pixels = 0;
+  uint64_t pixel_tests = 0, pixel_hits = 0, pixel_misses = 0, fragments = 0, rendered_pixels = 0;
   uint64_t faces_projected = 0, faces_culled = 0, faces_offscreen = 0, faces_degenerate = 0, faces_clipped = 0;
   uint64_t tets_invisible = 0, tets_degenerate = 0;
   uint64_t max_list_length = 0, forced_composites = 0, budget_flushes = 0;

@@ -157,6 +157,8 @@ TEST(ScanStrategies, SpanEqualsBoundingBoxExactly) {
       ASSERT_EQ(a.z[k], b.z[k]);
       ASSERT_EQ(a.s[k], b.s[k]);
     }
+    ASSERT_EQ(ca.pixel_misses, ca.pixel_tests - ca.pixel_hits);
+    ASSERT_LE(cb.pixel_misses, cb.pixel_tests);
     total_hits += ca.pixel_hits;
     bbox_tests += ca.pixel_tests;
     span_tests += cb.pixel_tests;
@@ -181,6 +183,7 @@ TEST(ScanStrategies, BConvertCandidatesAreASubsetOfTheBoundingBox) {
       bconvert_scan(st, vp, s, b, cb, nullptr);
       const PixelSet pa = pixels(a), pb = pixels(b);
       for (const auto& p : pb) ASSERT_TRUE(pa.count(p)) << to_string(v);
+      ASSERT_EQ(cb.pixel_misses, cb.pixel_tests - cb.pixel_hits);
       hits += cb.pixel_hits;
       bhits += ca.pixel_hits;
       missing += pa.size() - pb.size();
