@@ -7,15 +7,23 @@ namespace zs {
 
 namespace {
 
-EdgeFn make_edge(const ScreenVertex& p, const ScreenVertex& q, const ScreenVertex& opposite) {
-  const ScreenVertex& a = p.id < q.id ? p : q;
-  const ScreenVertex& b = p.id < q.id ? q : p;
+// Edge p -> q in the triangle's traversal order; `ccw` = the triangle's
+// orientation. The sign comes from the orientation, not from evaluating the
+// opposite vertex: on a sliver that vertex is within rounding of the edge's
+// line and its sign can disagree with the other two edges, which would make
+// the "inside" region an unbounded wedge instead of the triangle.
+EdgeFn make_edge(const ScreenVertex& p, const ScreenVertex& q, bool ccw) {
+  const bool forward = p.id < q.id;
+  const ScreenVertex& a = forward ? p : q;
+  const ScreenVertex& b = forward ? q : p;
   EdgeFn e;
   e.ax = a.x;
   e.ay = a.y;
   e.dx = b.x - a.x;
   e.dy = b.y - a.y;
-  e.sign = e.eval(opposite.x, opposite.y) > 0 ? 1.0 : -1.0;
+  // E > 0 on the left of a -> b; the interior is on the left of p -> q when
+  // the triangle turns counter-clockwise (det > 0).
+  e.sign = (ccw == forward) ? 1.0 : -1.0;
   // Gradient of sign·E is sign·(-dy, dx): the direction of the interior.
   const double nx = -e.sign * e.dy, ny = e.sign * e.dx;
   e.take_ties = nx > 0 || (nx == 0 && ny > 0);
@@ -30,9 +38,10 @@ bool setup_triangle(const ScreenVertex v[3], bool perspective, ScreenTriangle* t
   const double det = e1x * e2y - e2x * e1y;
   if (det == 0 || !std::isfinite(det)) return false;
   t->perspective = perspective;
-  t->edge[0] = make_edge(v[1], v[2], v[0]);
-  t->edge[1] = make_edge(v[2], v[0], v[1]);
-  t->edge[2] = make_edge(v[0], v[1], v[2]);
+  const bool ccw = det > 0;
+  t->edge[0] = make_edge(v[1], v[2], ccw);
+  t->edge[1] = make_edge(v[2], v[0], ccw);
+  t->edge[2] = make_edge(v[0], v[1], ccw);
   t->x0 = v[0].x;
   t->y0 = v[0].y;
   auto plane = [&](double f0, double f1, double f2, double* c, double* gx, double* gy) {

@@ -167,6 +167,25 @@ TEST(ScanStrategies, SpanEqualsBoundingBoxExactly) {
   EXPECT_LT(span_tests, bbox_tests / 2);
 }
 
+// Regression (delta-like at 512²): a sliver whose third vertex lies within
+// rounding of the opposite edge's line. Edge signs taken from that vertex made
+// the inside region an unbounded wedge; span then emitted whole rows.
+TEST(ScanStrategies, SliverEdgeSignsFollowTheOrientation) {
+  const ScreenVertex v[3] = {{159.79042904290429, 221.3085808580858, 1, 0, 10},
+                             {158.56292308062922, 221.88141697381417, 1, 0, 11},
+                             {162.25898076219818, 220.15659005574867, 1, 0, 12}};
+  ScreenTriangle st;
+  ASSERT_TRUE(setup_triangle(v, false, &st));
+  const Viewport vp{0, 0, 512, 512};
+  FaceFragments a, b;
+  ScanCounters ca, cb;
+  scan_bbox(st, vp, a, ca);
+  scan_span(st, vp, b, cb);
+  EXPECT_EQ(a.size(), b.size());
+  EXPECT_LE(b.size(), 4u);
+  for (int i = 0; i < 512; i += 7) EXPECT_FALSE(st.inside(i, 221) && (i < 158 || i > 163)) << i;
+}
+
 TEST(ScanStrategies, BConvertCandidatesAreASubsetOfTheBoundingBox) {
   const Viewport vp{0, 0, 64, 48};
   BConvertScratch s;
