@@ -25,7 +25,8 @@ std::string font() {
 
 std::string tick_label(double v) {
   char buf[32];
-  if (v >= 1e4 || (v > 0 && v < 1e-2)) std::snprintf(buf, sizeof buf, "%.0e", v);
+  if (v == std::floor(v) && v < 1e7) std::snprintf(buf, sizeof buf, "%.0f", v);  // image sizes
+  else if (v >= 1e4 || (v > 0 && v < 1e-2)) std::snprintf(buf, sizeof buf, "%.0e", v);
   else std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }

@@ -180,4 +180,49 @@ void write_scan_bench_csv(const std::string& path, const std::vector<ScanBenchRo
   out.commit();
 }
 
+std::vector<ScanBenchRow> read_scan_bench_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  std::string line;
+  std::vector<ScanBenchRow> rows;
+  size_t line_no = 1;
+  if (!std::getline(in, line) || line.rfind("mesh,size,strategy,variant,", 0) != 0)
+    throw std::runtime_error(path + ":1: not a zsweep bench scan CSV");
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty()) continue;
+    std::vector<std::string> f;
+    size_t start = 0;
+    for (size_t k = 0; k <= line.size(); ++k)
+      if (k == line.size() || line[k] == ',') f.push_back(line.substr(start, k - start)), start = k + 1;
+    if (f.size() != 22) throw std::runtime_error(path + ":" + std::to_string(line_no) + ": expected 22 columns");
+    try {
+      ScanBenchRow r;
+      r.mesh = f[0];
+      r.size = uint32_t(std::stoul(f[1]));
+      r.strategy = f[2];
+      r.variant = f[3];
+      r.list_generation_ms = std::stod(f[4]);
+      r.scan_convert_ms = std::stod(f[5]);
+      r.total_ms = std::stod(f[6]);
+      r.pixel_tests = std::stoull(f[7]);
+      r.pixel_hits = std::stoull(f[8]);
+      r.pixel_misses = std::stoull(f[9]);
+      r.missing_pixels = std::stoull(f[10]);
+      r.rendered_pixels = std::stoull(f[11]);
+      r.image_max_abs_diff = f[12].empty() ? -1 : std::stod(f[12]);
+      r.face_to_bbox_area_ratio = std::stod(f[13]);
+      r.render_ms = std::stod(f[14]);
+      r.mean_face_area_px = std::stod(f[15]);
+      r.faces_projected = std::stoull(f[16]);
+      r.bconvert_fallbacks = std::stoull(f[17]);
+      for (int k = 0; k < 4; ++k) r.row_end_misses[k] = std::stoull(f[18 + size_t(k)]);
+      rows.push_back(r);
+    } catch (const std::logic_error&) {
+      throw std::runtime_error(path + ":" + std::to_string(line_no) + ": not a number");
+    }
+  }
+  return rows;
+}
+
 }  // namespace zs

@@ -40,6 +40,8 @@ struct ScanBenchRow {
 
 std::vector<ScanBenchRow> run_scan_bench(const ScanBenchOptions& opt);
 void write_scan_bench_csv(const std::string& path, const std::vector<ScanBenchRow>& rows);
+// Reads rows back from CSVs written by write_scan_bench_csv (to merge runs).
+std::vector<ScanBenchRow> read_scan_bench_csv(const std::string& path);
 // Figures (time vs resolution per mesh, log scales) and tables.md mirroring
 // the seed's Tables 4.2-4.10, into dir.
 void write_scan_bench_report(const std::string& dir, const std::vector<ScanBenchRow>& rows);

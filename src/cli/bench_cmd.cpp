@@ -24,6 +24,8 @@ std::vector<std::string> split(const std::string& s) {
 
 }  // namespace
 
+void add_bench_report_command(CLI::App& bench);
+
 void add_bench_command(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks (CSV + PNG plots)");
   bench->require_subcommand(1);
@@ -81,6 +83,27 @@ void add_bench_command(CLI::App& app) {
     if (!o.plots_dir.empty()) write_scan_bench_report(o.plots_dir, rows);
     std::printf("wrote %s (%zu rows)%s%s\n", o.csv.c_str(), rows.size(), o.plots_dir.empty() ? "" : ", plots in ",
                 o.plots_dir.c_str());
+  });
+  add_bench_report_command(*bench);
+}
+
+void add_bench_report_command(CLI::App& bench) {
+  struct Args {
+    std::vector<std::string> csvs;
+    std::string plots;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* rep = bench.add_subcommand("report", "Merge bench scan CSVs into one set of tables and plots");
+  rep->add_option("csvs", a->csvs, "CSV files written by `zsweep bench scan`")->required();
+  rep->add_option("--plots", a->plots, "Output directory for tables.md and PNG plots")->required();
+  rep->callback([a] {
+    std::vector<ScanBenchRow> rows;
+    for (const auto& c : a->csvs) {
+      auto r = read_scan_bench_csv(c);
+      rows.insert(rows.end(), r.begin(), r.end());
+    }
+    write_scan_bench_report(a->plots, rows);
+    std::printf("wrote %s/tables.md and plots (%zu rows)\n", a->plots.c_str(), rows.size());
   });
 }
 

@@ -39,4 +39,8 @@ print("csv ok")
 PY
 for f in tables.md blob-time.png; do [ -s "$tmp/plots/$f" ] || fail "missing $f"; done
 grep -q 'Table 4.10 analogue' "$tmp/plots/tables.md" || fail "tables.md lacks Table 4.10"
+# Merging runs: the CSV reads back into the same tables.
+"$zsweep" bench report "$tmp/b.csv" "$tmp/b.csv" --plots "$tmp/merged" >/dev/null || fail "bench report"
+[ -s "$tmp/merged/tables.md" ] && [ -s "$tmp/merged/blob-time.png" ] || fail "bench report outputs"
+"$zsweep" bench report "$tmp/blob.off" --plots "$tmp/x" >/dev/null 2>&1 && fail "bench report accepted a non-CSV"
 echo "bench scan: 1 passed, 0 failed"
