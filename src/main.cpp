@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   zs::add_mesh_generate_command(*mesh);
   zs::add_render_command(app);
   zs::add_bench_command(app);
+  zs::add_compare_command(app);
 
   try {
     app.parse(argc, argv);

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -94,6 +95,34 @@ TEST(ImageIo, ExrIsFloatAndPngIsQuantizedWithoutGamma) {
   }
   EXPECT_THROW(write_image((dir / "nodir" / "x.png").string(), img), std::runtime_error);
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 3);
+}
+
+}  // namespace
+}  // namespace zs
+
+#include "image/image_compare.h"
+
+namespace zs {
+namespace {
+
+TEST(ImageCompare, NumbersAndDifferenceImage) {
+  Image a(4, 2), b(4, 2);
+  for (size_t k = 0; k < a.rgba.size(); ++k) a.rgba[k] = b.rgba[k] = 0.5f;
+  ImageDiff same = compare_images(a, b);
+  EXPECT_EQ(same.max_abs, 0.0);
+  EXPECT_TRUE(std::isinf(same.psnr));
+  b.at(3, 1)[2] = 0.5f + 0.1f;  // one channel of one pixel
+  b.at(0, 0)[0] = 0.5f + 0.5f / 255.0f;  // below the 1/255 threshold
+  const ImageDiff d = compare_images(a, b);
+  EXPECT_NEAR(d.max_abs, 0.1, 1e-6);
+  EXPECT_EQ(d.worst_x, 3u);
+  EXPECT_EQ(d.worst_y, 1u);
+  EXPECT_EQ(d.pixels_over_1_255, 1u);
+  EXPECT_NEAR(d.rmse, std::sqrt((0.01 + std::pow(0.5 / 255.0, 2)) / 32.0), 1e-6);
+  const Image f = difference_image(a, b, 0.1);
+  EXPECT_FLOAT_EQ(f.at(3, 1)[0], 1.f);  // full red at the scale
+  EXPECT_FLOAT_EQ(f.at(1, 0)[0] + f.at(1, 0)[1] + f.at(1, 0)[2], 0.f);
+  EXPECT_THROW(compare_images(a, Image(2, 2)), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,0 +1,23 @@
+// Image differences for accuracy work: max abs, RMSE, PSNR (peak 1), and
+// the number of pixels whose largest channel difference exceeds 1/255.
+#pragma once
+
+#include <cstdint>
+
+#include "image/image.h"
+
+namespace zs {
+
+struct ImageDiff {
+  double max_abs = 0, rmse = 0, psnr = 0;  // psnr = +inf for identical images
+  uint64_t pixels_over_1_255 = 0;
+  uint32_t worst_x = 0, worst_y = 0;
+};
+
+// Throws std::invalid_argument when the sizes differ.
+ImageDiff compare_images(const Image& a, const Image& b);
+// False colour: black = equal, through blue and green to red at `scale`
+// (per-pixel max channel difference); opaque.
+Image difference_image(const Image& a, const Image& b, double scale);
+
+}  // namespace zs
