@@ -85,6 +85,7 @@ std::vector<ScanBenchRow> run_scan_bench(const ScanBenchOptions& opt) {
       rs.memory_budget_bytes = budget;
       rs.progress = false;
       rs.raster_only = size > opt.raster_only_above;
+      rs.face_area_stats = true;
       if (!scene.has_camera) rs.camera = seed_camera(mesh, size, size);
       if (!scene.has_transfer_function) rs.tf = bench_tf(mesh);
       // The bounding box first: the reference for missing pixels and images.

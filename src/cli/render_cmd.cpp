@@ -136,6 +136,7 @@ void run(const RenderArgs& a) {
   if (a.max_list_length >= 0) rs.max_list_length = uint32_t(a.max_list_length);
   rs.threads = a.threads > 0 ? a.threads : int(std::max(1u, std::thread::hardware_concurrency()));
   rs.progress = true;
+  rs.face_area_stats = !a.stats.empty();
 
   const auto t0 = Clock::now();
   const TetMesh mesh = scene.mesh_path.empty() ? default_mesh() : read_mesh(scene.mesh_path, scene.mesh_options);

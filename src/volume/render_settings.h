@@ -35,6 +35,9 @@ struct RenderSettings {
   // Benchmarks: scan-convert every face but keep no fragments (no lists, no
   // compositing; the image is the background).
   bool raster_only = false;
+  // Sum screen face and bounding-box areas (Table 4.4); off in plain renders
+  // so the per-face hot path does not pay three square roots for a statistic.
+  bool face_area_stats = false;
 };
 
 }  // namespace zs

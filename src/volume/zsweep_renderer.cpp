@@ -132,7 +132,7 @@ void sweep_tile(const SweepInput& in, const Viewport& vp, uint64_t max_fragments
     ++S.faces_projected;
     // Heron's formula on the screen edges (Eqs. 4.1-4.3) and the box area,
     // for the face / bounding-box ratio of Table 4.4.
-    {
+    if (rs.face_area_stats) {
       const double e0 = std::hypot(tri[1].x - tri[0].x, tri[1].y - tri[0].y);
       const double e1 = std::hypot(tri[2].x - tri[1].x, tri[2].y - tri[1].y);
       const double e2 = std::hypot(tri[0].x - tri[2].x, tri[0].y - tri[2].y);
