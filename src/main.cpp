@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   zs::add_render_command(app);
   zs::add_bench_command(app);
   zs::add_compare_command(app);
+  zs::add_reference_command(app);
 
   try {
     app.parse(argc, argv);

@@ -13,5 +13,6 @@ void add_mesh_generate_command(CLI::App& mesh);
 void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_reference_command(CLI::App& app);
 
 }  // namespace zs

@@ -210,7 +210,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     }
     if (r.contains("integrator")) {
       if (!r["integrator"].is_string() || !parse_integrator(r["integrator"].get<std::string>(), &rs.integrator))
-        c.fail("render.integrator must be \"exact\", \"linear\" or \"preintegrated\"");
+        c.fail("render.integrator must be \"exact\", \"linear\", \"preintegrated\" or \"taylor2\"");
     }
     if (r.contains("early_termination")) {
       rs.early_termination = num(c, r["early_termination"], "render.early_termination");

@@ -71,12 +71,13 @@ const char* to_string(Integrator i) {
     case Integrator::Exact: return "exact";
     case Integrator::Linear: return "linear";
     case Integrator::Preintegrated: return "preintegrated";
+    case Integrator::Taylor2: return "taylor2";
   }
   return "?";
 }
 
 bool parse_integrator(const std::string& s, Integrator* out) {
-  for (Integrator i : {Integrator::Exact, Integrator::Linear, Integrator::Preintegrated})
+  for (Integrator i : {Integrator::Exact, Integrator::Linear, Integrator::Preintegrated, Integrator::Taylor2})
     if (s == to_string(i)) return *out = i, true;
   return false;
 }
@@ -142,6 +143,7 @@ SegmentLight SegmentIntegrator::integrate(double s0, double s1, double L) const 
     case Integrator::Exact: return exact(s0, s1, L);
     case Integrator::Linear: return linear(s0, s1, L);
     case Integrator::Preintegrated: return preintegrated(s0, s1, L);
+    case Integrator::Taylor2: return taylor2(s0, s1, L);
   }
   return {{0, 0, 0}, 1.0};
 }
@@ -198,6 +200,22 @@ SegmentLight SegmentIntegrator::preintegrated(double s0, double s1, double L) co
   SegmentLight out;
   // C = C_b (psi - zeta) + C_f (1 - psi)   (Moreland & Angel 2004, Eq. 8)
   for (int k = 0; k < 3; ++k) out.rgb[k] = cb[k] * (psi - T) + cf[k] * (1 - psi);
+  out.T = T;
+  return out;
+}
+
+SegmentLight SegmentIntegrator::taylor2(double s0, double s1, double L) const {
+  // The cheap compositing of the original ZSweep lineage: mean extinction and
+  // mean colour over the segment, and T = e^-x replaced by 1 - x + x^2/2.
+  // The series is only meaningful for thin segments; x is capped at 1 (where
+  // it has its minimum, T = 1/2) so thick segments lose opacity instead of
+  // gaining light — the error this costs is measured by `bench accuracy`.
+  const auto a = tf_.rgba(s0), b = tf_.rgba(s1);
+  const double tau = 0.5 * (-std::log(1.0 - a[3]) - std::log(1.0 - b[3])) / tf_.unit_distance();
+  const double x = std::min(tau * L, 1.0);
+  const double T = 1.0 - x + 0.5 * x * x;
+  SegmentLight out;
+  for (int k = 0; k < 3; ++k) out.rgb[k] = 0.5 * (a[k] + b[k]) * (1.0 - T);
   out.T = T;
   return out;
 }

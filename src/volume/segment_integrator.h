@@ -15,6 +15,7 @@ enum class Integrator {
   Exact,          // split at TF breakpoints, closed-form optical depth, quadrature for colour
   Linear,         // the seed's Eq. 2.8: colour and opacity linear between the two ends
   Preintegrated,  // Moreland–Angel partial pre-integration: tau and colour linear, psi table
+  Taylor2,        // original-ZSweep style: e^-x by its 2nd-order Taylor expansion, mean colour
 };
 
 const char* to_string(Integrator i);
@@ -38,6 +39,7 @@ class SegmentIntegrator {
   SegmentLight exact(double s0, double s1, double L) const;
   SegmentLight linear(double s0, double s1, double L) const;
   SegmentLight preintegrated(double s0, double s1, double L) const;
+  SegmentLight taylor2(double s0, double s1, double L) const;
 
   const TransferFunction& tf_;
   Integrator kind_;

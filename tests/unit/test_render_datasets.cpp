@@ -1,11 +1,14 @@
 // The real meshes render with the automatic camera and transfer function:
-// finite values everywhere, a sensible number of covered pixels.
+// finite values everywhere, a sensible number of covered pixels, and the
+// ZSweep image within float rounding of the reference ray caster.
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "mesh/io/mesh_io.h"
+#include "image/image_compare.h"
 #include "mesh/topology.h"
+#include "reference/reference_renderer.h"
 #include "scene/scene.h"
 #include "test_paths.h"
 #include "volume/zsweep_renderer.h"
@@ -19,13 +22,20 @@ void render_finite(const TetMesh& m, Projection proj, uint64_t min_rendered) {
   rs.height = 120;
   rs.camera = auto_camera(m, proj, rs.width, rs.height);
   rs.tf = default_transfer_function(m);
+  rs.threads = 2;
   RenderStats st;
-  const Image img = render_zsweep(m, build_topology(m), rs, &st);
+  const Topology topo = build_topology(m);
+  const Image img = render_zsweep(m, topo, rs, &st);
   size_t bad = 0;
   for (float v : img.rgba) bad += !std::isfinite(v) || v < -1e-6f || v > 1 + 1e-5f;
   EXPECT_EQ(bad, 0u);
   EXPECT_GE(st.rendered_pixels, min_rendered);
   EXPECT_EQ(st.faces_clipped, 0u);
+  ReferenceStats rst;
+  const Image ref = render_reference(m, topo, rs, &rst);
+  const ImageDiff d = compare_images(img, ref);
+  EXPECT_LE(d.max_abs, 1e-5) << "worst pixel " << d.worst_x << ", " << d.worst_y;
+  EXPECT_EQ(rst.lost_walks, 0u);
 }
 
 TEST(RenderDatasets, Spx) {

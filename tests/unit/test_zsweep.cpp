@@ -13,23 +13,7 @@ namespace {
 
 using test::box_chord;
 using test::box_mesh;
-
-// The ray through pixel centre (i, j), straight from the scene spec (kept
-// independent of the engine's View class on purpose).
-void spec_ray(const Camera& c, uint32_t W, uint32_t H, int i, int j, glm::dvec3* o, glm::dvec3* d) {
-  const glm::dvec3 f = glm::normalize(c.target - c.eye);
-  const glm::dvec3 r = glm::normalize(glm::cross(f, c.up));
-  const glm::dvec3 u = glm::cross(r, f);
-  const double a = (i + 0.5) / W - 0.5, b = 0.5 - (j + 0.5) / H;
-  if (c.projection == Projection::Orthographic) {
-    *o = c.eye + a * c.height * W / H * r + b * c.height * u;
-    *d = f;
-  } else {
-    const double t = std::tan(c.fov_y * M_PI / 360.0);
-    *o = c.eye;
-    *d = glm::normalize(f + a * 2 * t * W / H * r + b * 2 * t * u);
-  }
-}
+using test::spec_ray;
 
 RenderSettings settings(uint32_t W, uint32_t H, Projection proj, TransferFunction tf) {
   RenderSettings rs;
@@ -89,32 +73,6 @@ TEST(ZSweep, ConstantDensityBoxPerspectiveMatchesClosedForm) {
   check_constant_box(Projection::Perspective, 64, 96);
 }
 
-// Reference: march the ray through the box with fine midpoint steps.
-void reference_ray(const TransferFunction& tf, const std::function<double(const glm::dvec3&)>& s, glm::dvec3 o,
-                   glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi, double out[4]) {
-  double t0 = 0, t1 = 1e300;
-  for (int ax = 0; ax < 3; ++ax) {
-    double ta = (lo[ax] - o[ax]) / d[ax], tb = (hi[ax] - o[ax]) / d[ax];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  double C[3] = {0, 0, 0}, T = 1;
-  if (t1 > t0) {
-    const int n = 20000;
-    const double dt = (t1 - t0) / n;
-    for (int k = 0; k < n; ++k) {
-      const double sv = s(o + (t0 + (k + 0.5) * dt) * d);
-      const double tau = tf.extinction(sv);
-      const auto c = tf.color(sv);
-      const double step_T = std::exp(-tau * dt);
-      for (int q = 0; q < 3; ++q) C[q] += T * c[q] * (1 - step_T);
-      T *= step_T;
-    }
-  }
-  out[0] = C[0], out[1] = C[1], out[2] = C[2], out[3] = 1 - T;
-}
-
 TEST(ZSweep, LinearScalarMatchesQuadratureWithExactIntegrator) {
   const glm::dvec3 lo{-1.0, -0.8, -0.6}, hi{1.0, 0.8, 0.6};
   auto field = [](const glm::dvec3& p) { return 0.5 + 0.22 * p.x + 0.15 * p.y - 0.2 * p.z; };
@@ -133,7 +91,7 @@ TEST(ZSweep, LinearScalarMatchesQuadratureWithExactIntegrator) {
         glm::dvec3 o, d;
         spec_ray(rs.camera, W, H, int(i), int(j), &o, &d);
         double ref[4];
-        reference_ray(tf, field, o, d, lo, hi, ref);
+        test::march_box_ray(tf, field, o, d, lo, hi, ref);
         for (int k = 0; k < 4; ++k) err[which] = std::max(err[which], std::abs(img.at(i, j)[k] - ref[k]));
       }
     ++which;

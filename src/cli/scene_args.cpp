@@ -1,0 +1,58 @@
+#include "cli/scene_args.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+
+namespace zs {
+
+void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
+  cmd.add_option("input", input, "Scene .json, or a mesh (automatic camera and transfer function)");
+  cmd.add_option("--threads", threads, "Threads (default: every core); images are identical for any count")
+      ->check(CLI::Range(1, 1024));
+  cmd.add_option("--q", opt.q_path, "PLOT3D solution file (mesh input)");
+  cmd.add_option("--scalar", opt.scalar, "Point array or PLOT3D function (mesh input)");
+  cmd.add_option("--width", width, "Override image width")->check(CLI::Range(1u, 1u << 20));
+  cmd.add_option("--height", height, "Override image height")->check(CLI::Range(1u, 1u << 20));
+  cmd.add_option("--projection", projection, "Automatic camera: orthographic (default) or perspective");
+  if (!engine_knobs) return;
+  cmd.add_option("--scan", scan, "Scan strategy: bbox, bconvert, span");
+  cmd.add_option("--variant", variant, "B-Convert variant: truncate, round, dilate, dda3d, runlength");
+  cmd.add_option("--integrator", integrator, "exact, linear, preintegrated or taylor2");
+  cmd.add_option("--memory-budget", memory_budget_mb, "Memory budget in MiB (default: half of physical memory)");
+  cmd.add_option("--early-termination", early_termination, "Stop a pixel below t/510 transmittance (t in 8-bit levels)");
+  cmd.add_option("--max-list-length", max_list_length, "Force compositing when a pixel list grows past this");
+}
+
+SceneInput SceneArgs::load() const {
+  Projection p = Projection::Orthographic;
+  if (projection == "perspective") p = Projection::Perspective;
+  else if (!projection.empty() && projection != "orthographic")
+    throw std::runtime_error("--projection must be orthographic or perspective");
+  RenderSettings knobs;
+  if (!scan.empty() && !parse_scan_strategy(scan, &knobs.scan))
+    throw std::runtime_error("--scan must be bbox, bconvert or span");
+  if (!variant.empty() && !parse_bconvert_variant(variant, &knobs.bconvert_variant))
+    throw std::runtime_error("--variant must be truncate, round, dilate, dda3d or runlength");
+  if (!integrator.empty() && !parse_integrator(integrator, &knobs.integrator))
+    throw std::runtime_error("--integrator must be exact, linear, preintegrated or taylor2");
+
+  SceneInput in = load_scene_input(input, opt);
+  RenderSettings& rs = in.scene.settings;
+  if (width) rs.width = width;
+  if (height) rs.height = height;
+  if (!scan.empty()) rs.scan = knobs.scan;
+  if (!variant.empty()) rs.bconvert_variant = knobs.bconvert_variant;
+  if (!integrator.empty()) rs.integrator = knobs.integrator;
+  if (memory_budget_mb > 0) rs.memory_budget_bytes = uint64_t(memory_budget_mb * 1048576.0);
+  if (early_termination >= 0) rs.early_termination = early_termination;
+  if (max_list_length >= 0) rs.max_list_length = uint32_t(max_list_length);
+  rs.threads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  rs.progress = true;
+  finish_scene(in, p);
+  return in;
+}
+
+}  // namespace zs

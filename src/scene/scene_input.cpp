@@ -1,0 +1,50 @@
+#include "scene/scene_input.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "mesh/default_mesh.h"
+
+namespace zs {
+
+Scene default_scene() {
+  Scene s;
+  RenderSettings& rs = s.settings;
+  rs.width = rs.height = 512;
+  rs.camera.projection = Projection::Perspective;
+  rs.camera.eye = {2.6, 1.6, 3.4};
+  rs.camera.target = {0, 0, 0};
+  rs.camera.up = {0, 1, 0};
+  rs.camera.fov_y = 35;
+  rs.background[0] = rs.background[1] = rs.background[2] = 0.0;
+  rs.background[3] = 1.0;
+  rs.tf = TransferFunction({{0.0, 0.1, 0.2, 0.6}, {0.3, 0.1, 0.7, 0.8}, {0.6, 0.95, 0.85, 0.3}, {1.0, 0.9, 0.2, 0.1}},
+                           {{0.0, 0.0}, {0.15, 0.0}, {0.35, 0.08}, {0.6, 0.25}, {1.0, 0.8}}, 0.1);
+  s.has_camera = s.has_transfer_function = true;
+  return s;
+}
+
+SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options) {
+  SceneInput in;
+  if (input.empty()) {
+    in.scene = default_scene();
+  } else if (input.size() > 5 && input.compare(input.size() - 5, 5, ".json") == 0) {
+    in.scene = load_scene(input);
+  } else {
+    in.scene.mesh_path = input;
+    in.scene.mesh_options = mesh_options;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  in.mesh = in.scene.mesh_path.empty() ? default_mesh() : read_mesh(in.scene.mesh_path, in.scene.mesh_options);
+  in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (in.mesh.num_tets() == 0) throw std::runtime_error(in.scene.mesh_path + ": mesh has no tets");
+  return in;
+}
+
+void finish_scene(SceneInput& in, Projection auto_projection) {
+  RenderSettings& rs = in.scene.settings;
+  if (!in.scene.has_camera) rs.camera = auto_camera(in.mesh, auto_projection, rs.width, rs.height);
+  if (!in.scene.has_transfer_function) rs.tf = default_transfer_function(in.mesh);
+}
+
+}  // namespace zs

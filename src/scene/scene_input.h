@@ -1,0 +1,29 @@
+// A scene as the command line names it: a scene .json, a bare mesh file
+// (automatic camera and transfer function), or nothing at all (the embedded
+// default scene). Shared by render, reference and the benchmarks.
+#pragma once
+
+#include <string>
+
+#include "mesh/io/mesh_io.h"
+#include "mesh/tet_mesh.h"
+#include "scene/scene.h"
+
+namespace zs {
+
+// The embedded default scene: the default ball of blobs, seen obliquely.
+Scene default_scene();
+
+struct SceneInput {
+  Scene scene;
+  TetMesh mesh;
+  double ms_load = 0;
+};
+
+// Reads the scene (if any) and its mesh. Throws std::runtime_error naming the
+// file. Camera and transfer function are filled in by finish_scene, after the
+// caller has applied its overrides (the automatic camera depends on the size).
+SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options);
+void finish_scene(SceneInput& in, Projection auto_projection = Projection::Orthographic);
+
+}  // namespace zs
