@@ -57,7 +57,10 @@ void write_line_plot(const std::string& path, const PlotSpec& spec, const std::v
   auto tx = [&](double v) { return spec.log_x ? std::log10(v) : v; };
   auto ty = [&](double v) { return spec.log_y ? std::log10(v) : v; };
   double ax0 = tx(x0), ax1 = tx(x1), ay0 = ty(y0), ay1 = ty(y1);
+  for (const auto& [v, label] : spec.y_marks)
+    if (v > 0 || !spec.log_y) ay0 = std::min(ay0, ty(v)), ay1 = std::max(ay1, ty(v));
   if (spec.log_y) ay0 = std::floor(ay0), ay1 = std::ceil(ay1);
+  if (spec.scatter && spec.log_x) ax0 = std::floor(ax0), ax1 = std::ceil(ax1);
   if (ax1 - ax0 < 1e-12) ax0 -= 0.5, ax1 += 0.5;
   if (ay1 - ay0 < 1e-12) ay0 -= 0.5, ay1 += 0.5;
   const double pad_x = 0.04 * (ax1 - ax0);
@@ -71,6 +74,13 @@ void write_line_plot(const std::string& path, const PlotSpec& spec, const std::v
   for (const auto& s : series) xt.insert(xt.end(), s.x.begin(), s.x.end());
   std::sort(xt.begin(), xt.end());
   xt.erase(std::unique(xt.begin(), xt.end()), xt.end());
+  if (spec.scatter) {
+    xt.clear();
+    if (spec.log_x)
+      for (int e = int(std::lround(ax0 + pad_x)); e <= int(std::lround(ax1 - pad_x)); ++e) xt.push_back(std::pow(10.0, e));
+    else
+      for (int k = 0; k <= 5; ++k) xt.push_back(ax0 + pad_x + (ax1 - ax0 - 2 * pad_x) * k / 5);
+  }
   for (double v : xt) {
     const int X = int(px(v));
     IBA::render_line(img, X, top, X, H - bottom, grey);
@@ -90,6 +100,11 @@ void write_line_plot(const std::string& path, const PlotSpec& spec, const std::v
       text(10, Y + 5, tick_label(v), 12);
     }
   }
+  for (const auto& [v, label] : spec.y_marks) {
+    const int Y = int(py(v));
+    for (int X = left; X < W - right; X += 12) IBA::render_line(img, X, Y, std::min(X + 6, W - right), Y, black);
+    text(W - right - 8 * int(label.size()) - 4, Y - 4, label, 12);
+  }
   IBA::render_box(img, left, top, W - right, H - bottom, black);
   text(left, 30, spec.title, 18);
   text(left + (W - left - right) / 2 - 60, H - 20, spec.xlabel + (spec.log_x ? " (log)" : ""));
@@ -106,7 +121,9 @@ void write_line_plot(const std::string& path, const PlotSpec& spec, const std::v
       if ((spec.log_x && s.x[k] <= 0) || (spec.log_y && s.y[k] <= 0) || !std::isfinite(s.y[k])) continue;
       const int X = int(px(s.x[k])), Y = int(py(s.y[k]));
       IBA::render_box(img, X - 3, Y - 3, X + 3, Y + 3, {c[0], c[1], c[2]}, true);
-      if (prev_x >= 0)
+      if (k < s.labels.size() && !s.labels[k].empty())
+        IBA::render_text(img, X + 6, Y + 4, s.labels[k], 10, f, {c[0], c[1], c[2]});
+      if (prev_x >= 0 && !spec.scatter)
         for (int d = -1; d <= 1; ++d) IBA::render_line(img, prev_x, prev_y + d, X, Y + d, {c[0], c[1], c[2]});
       prev_x = X, prev_y = Y;
     }

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bench/accuracy_bench.h"
 #include "bench/scan_bench.h"
 #include "cli/commands.h"
 
@@ -25,6 +26,7 @@ std::vector<std::string> split(const std::string& s) {
 }  // namespace
 
 void add_bench_report_command(CLI::App& bench);
+void add_bench_accuracy_command(CLI::App& bench);
 
 void add_bench_command(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks (CSV + PNG plots)");
@@ -85,6 +87,48 @@ void add_bench_command(CLI::App& app) {
                 o.plots_dir.c_str());
   });
   add_bench_report_command(*bench);
+  add_bench_accuracy_command(*bench);
+}
+
+void add_bench_accuracy_command(CLI::App& bench) {
+  struct Args {
+    std::vector<std::string> inputs;
+    std::string sizes = "512", groups = "integrator,scan,early-termination,max-list,resolution";
+    std::string csv, plots;
+    int repeat = 1, threads = 1;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* acc = bench.add_subcommand("accuracy", "Speed vs accuracy: every ZSweep setting against the reference");
+  acc->add_option("inputs", a->inputs, "Scene .json files, meshes, or 'default' (the embedded scene)")->required();
+  acc->add_option("--sizes", a->sizes, "Comma-separated image sizes")->capture_default_str();
+  acc->add_option("--groups", a->groups, "Axes to measure")->capture_default_str();
+  acc->add_option("--csv", a->csv, "Output CSV")->required();
+  acc->add_option("--plots", a->plots, "Directory for the PNG figures");
+  acc->add_option("--repeat", a->repeat, "Runs per setting; the fastest counts")->check(CLI::Range(1, 100));
+  acc->add_option("--threads", a->threads, "Threads for every render (and the reference)")->check(CLI::Range(1, 1024));
+  acc->callback([a] {
+    AccuracyBenchOptions o;
+    o.inputs = a->inputs;
+    o.sizes.clear();
+    for (const auto& s : split(a->sizes)) {
+      const long v = std::stol(s);
+      if (v < 1 || v > 65536) throw std::runtime_error("--sizes: " + s + " is not an image size");
+      o.sizes.push_back(uint32_t(v));
+    }
+    o.groups = split(a->groups);
+    for (const auto& g : o.groups)
+      if (g != "integrator" && g != "scan" && g != "early-termination" && g != "max-list" && g != "resolution")
+        throw std::runtime_error("--groups: unknown axis '" + g + "'");
+    o.csv = a->csv;
+    o.plots_dir = a->plots;
+    o.repeat = a->repeat;
+    o.threads = a->threads;
+    const auto rows = run_accuracy_bench(o);
+    write_accuracy_csv(o.csv, rows);
+    if (!o.plots_dir.empty()) write_accuracy_plots(o.plots_dir, rows);
+    std::printf("wrote %s (%zu rows)%s%s\n", o.csv.c_str(), rows.size(), o.plots_dir.empty() ? "" : ", plots in ",
+                o.plots_dir.c_str());
+  });
 }
 
 void add_bench_report_command(CLI::App& bench) {
