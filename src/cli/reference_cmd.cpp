@@ -32,7 +32,7 @@ void add_reference_command(CLI::App& app) {
     if (!stats->empty()) {
       nlohmann::json j = {{"time_ms", s.ms_total},       {"rays_hit", s.rays_hit},
                           {"segments", s.segments},      {"tet_steps", s.tet_steps},
-                          {"entries", s.entries},        {"lost_walks", s.lost_walks},
+                          {"entries", s.entries},        {"lost_walks", s.lost_walks}, {"flat_tets", s.flat_tets},
                           {"boundary_faces", s.boundary_faces}, {"unbinned_faces", s.unbinned_faces},
                           {"image", {{"width", img.width}, {"height", img.height}}}};
       AtomicFile f(*stats);

@@ -29,14 +29,15 @@ bool line_hits_triangle(const glm::dvec3& o, const glm::dvec3& d, const glm::dve
   return std::isfinite(*t);
 }
 
-BoundaryBins::BoundaryBins(const TetMesh& m, const Topology& topo, const View& view) : m_(m), topo_(topo) {
+BoundaryBins::BoundaryBins(const TetMesh& m, const Topology& topo, const SolidFaces& solid, const View& view)
+    : m_(m), topo_(topo) {
   for (uint32_t f = 0; f < topo.num_faces(); ++f)
-    if (topo.is_boundary(f)) faces_.push_back(f);
+    if (solid.boundary(f)) faces_.push_back(f);
   // Outward side: away from the fourth vertex of the face's tet.
   outward_sign_.resize(faces_.size());
   for (size_t k = 0; k < faces_.size(); ++k) {
     const auto& fv = topo.faces[faces_[k]];
-    const Tet& t = m.tets[topo.face_tets[faces_[k]][0]];
+    const Tet& t = m.tets[solid.tets[faces_[k]][0]];
     uint32_t opp = t[0];
     for (uint32_t v : t)
       if (v != fv[0] && v != fv[1] && v != fv[2]) opp = v;

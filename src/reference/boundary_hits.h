@@ -15,6 +15,7 @@
 
 #include "mesh/tet_mesh.h"
 #include "mesh/topology.h"
+#include "reference/tet_walk.h"
 #include "scene/camera.h"
 
 namespace zs {
@@ -32,7 +33,8 @@ bool line_hits_triangle(const glm::dvec3& o, const glm::dvec3& d, const glm::dve
 
 class BoundaryBins {
  public:
-  BoundaryBins(const TetMesh& m, const Topology& topo, const View& view);
+  // Boundary faces of the solid mesh (tet_walk.h: flat tets left out).
+  BoundaryBins(const TetMesh& m, const Topology& topo, const SolidFaces& solid, const View& view);
 
   // All boundary faces met by the line through pixel centre (i, j), sorted
   // by t (entries before exits at equal t).

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -27,21 +28,31 @@ struct RowCounters {
 }  // namespace
 
 Image render_reference(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs, ReferenceStats* stats) {
+  std::vector<uint32_t> rows(rs.height);
+  for (uint32_t j = 0; j < rs.height; ++j) rows[j] = j;
+  return render_reference_rows(mesh, topo, rs, rows, stats);
+}
+
+Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs,
+                            const std::vector<uint32_t>& rows_wanted, ReferenceStats* stats) {
   const auto t_start = std::chrono::steady_clock::now();
   const View view(rs.camera, rs.width, rs.height);
-  const BoundaryBins bins(mesh, topo, view);
+  const SolidFaces solid = build_solid_faces(mesh, topo);
+  const BoundaryBins bins(mesh, topo, solid, view);
   const SegmentIntegrator integ(rs.tf, Integrator::Exact);
-  Image img(rs.width, rs.height);
+  if (mesh.scalars.size() != mesh.points.size()) throw std::invalid_argument("reference: mesh has no point scalars");
+  Image img(rs.width, uint32_t(rows_wanted.size()));
   // Lengths below this are rounding, not geometry (a seam's exit and entry).
-  const double eps = 1e-12 * std::max(bounds_of(mesh).diagonal(), 1e-300);
+  const double eps = 1e-10 * std::max(bounds_of(mesh).diagonal(), 1e-300);
 
   tbb::enumerable_thread_specific<RowCounters> counters;
   tbb::enumerable_thread_specific<std::vector<BoundaryHit>> hit_buffers;
   auto do_rows = [&](const tbb::blocked_range<uint32_t>& rows) {
     RowCounters& c = counters.local();
     std::vector<BoundaryHit>& hits = hit_buffers.local();
-    for (uint32_t j = rows.begin(); j < rows.end(); ++j)
+    for (uint32_t row = rows.begin(); row < rows.end(); ++row)
       for (uint32_t i = 0; i < rs.width; ++i) {
+        const uint32_t j = rows_wanted[row];
         glm::dvec3 o, d;
         view.ray(double(i), double(j), &o, &d);
         bins.hits(i, j, o, d, &hits);
@@ -52,11 +63,13 @@ Image render_reference(const TetMesh& mesh, const Topology& topo, const RenderSe
           // Entries behind the end of the last walk were crossed by it (a
           // second face of a shared edge, say); a seam's coincident entry sits
           // within rounding of it and is taken.
-          if (!h.entry || h.t < t_done - eps) continue;
+          if (!h.entry || h.t < t_done - eps - 1e-12 * std::abs(h.t)) continue;
           ++c.entries;
-          const WalkResult w = walk_line(mesh, topo, o, d, h.face, h.t, [&](const WalkSegment& s) {
+          const WalkResult w = walk_line(mesh, topo, solid, o, d, h.face, h.t, [&](const WalkSegment& s) {
             const double a = std::max({s.t0, t_done, 0.0});
             if (!(s.t1 > a)) return;
+            // A cell with a non-finite scalar is empty (the engine drops it too).
+            if (!std::isfinite(s.s0) || !std::isfinite(s.s1)) return;
             // Scalar at the clipped start, linear in t within the tet.
             const double s0 = s.t1 > s.t0 ? s.s0 + (s.s1 - s.s0) * (a - s.t0) / (s.t1 - s.t0) : s.s0;
             const SegmentLight l = integ.integrate(s0, s.s1, s.t1 - a);
@@ -70,14 +83,14 @@ Image render_reference(const TetMesh& mesh, const Topology& topo, const RenderSe
           t_done = std::max(t_done, w.t_exit);
         }
         c.rays_hit += hit;
-        float* out = img.at(i, j);
+        float* out = img.at(i, row);
         for (int k = 0; k < 3; ++k) out[k] = float(rgb[k] + T * rs.background[k]);
         out[3] = float((1.0 - T) + T * rs.background[3]);
       }
   };
   {
     tbb::global_control gc(tbb::global_control::max_allowed_parallelism, size_t(std::max(1, rs.threads)));
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, rs.height, 1), do_rows);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(rows_wanted.size()), 1), do_rows);
   }
   if (stats) {
     *stats = ReferenceStats{};
@@ -89,6 +102,7 @@ Image render_reference(const TetMesh& mesh, const Topology& topo, const RenderSe
       stats->lost_walks += c.lost;
     }
     stats->boundary_faces = bins.num_faces();
+    for (uint8_t f : solid.flat) stats->flat_tets += f;
     stats->unbinned_faces = bins.everywhere_faces();
     stats->ms_total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
   }

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "image/image.h"
 #include "mesh/tet_mesh.h"
@@ -25,7 +26,8 @@ struct ReferenceStats {
   uint64_t segments = 0;        // tet pieces integrated
   uint64_t tet_steps = 0;       // tets visited (including behind the eye)
   uint64_t entries = 0;         // walks started at a boundary entry
-  uint64_t lost_walks = 0;      // walks stuck in a degenerate tet (the rest of that line re-enters at the next boundary face)
+  uint64_t lost_walks = 0;      // walks that found no exit (the rest of that line re-enters at the next boundary face)
+  uint64_t flat_tets = 0;       // zero-volume tets, left out of the solid mesh
   uint64_t boundary_faces = 0, unbinned_faces = 0;
 };
 
@@ -33,5 +35,9 @@ struct ReferenceStats {
 // the integrator is always exact, and no early termination is applied.
 Image render_reference(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings,
                        ReferenceStats* stats);
+// Only the listed rows of the full image (row k of the result is image row
+// rows[k]): checks of huge renders sample rows instead of casting every ray.
+Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings,
+                            const std::vector<uint32_t>& rows, ReferenceStats* stats);
 
 }  // namespace zs

@@ -6,7 +6,6 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
-#include "reference/boundary_hits.h"
 
 namespace zs {
 
@@ -45,17 +44,38 @@ bool tet_exit(const TetMesh& m, const Topology& topo, uint32_t tet, uint32_t ent
   return true;
 }
 
-int flat_tet_pass(const TetMesh& m, const Topology& topo, uint32_t tet, uint32_t entered_face, const glm::dvec3& o,
-                  const glm::dvec3& d) {
-  const Tet& tv = m.tets[tet];
-  for (int k = 0; k < 4; ++k) {
-    const uint32_t f = topo.tet_faces[tet][size_t(k)];
-    if (f == entered_face) continue;
-    const glm::dvec3 &a = m.points[tv[(k + 1) % 4]], &b = m.points[tv[(k + 2) % 4]], &c = m.points[tv[(k + 3) % 4]];
-    double t;
-    if (line_hits_triangle(o, d, a, b, c, &t)) return k;
+bool tet_is_flat(const TetMesh& m, const Tet& t) {
+  const glm::dvec3 p0 = m.points[t[0]];
+  const glm::dvec3 e1 = m.points[t[1]] - p0, e2 = m.points[t[2]] - p0, e3 = m.points[t[3]] - p0;
+  const double L = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)});
+  return !(std::abs(glm::dot(e1, glm::cross(e2, e3))) > 1e-12 * L * std::sqrt(L));
+}
+
+SolidFaces build_solid_faces(const TetMesh& m, const Topology& topo) {
+  SolidFaces s;
+  s.flat.resize(m.num_tets());
+  for (size_t t = 0; t < m.num_tets(); ++t) s.flat[t] = tet_is_flat(m, m.tets[t]);
+  s.tets.resize(topo.num_faces());
+  auto add = [&](uint32_t f, uint32_t t) {
+    auto& ft = s.tets[f];
+    if (s.flat[t] || ft[0] == t || ft[1] == t) return;
+    if (ft[0] == kNoTet) ft[0] = t;
+    else if (ft[1] == kNoTet) ft[1] = t;
+  };
+  for (uint32_t f = 0; f < topo.num_faces(); ++f) {
+    s.tets[f] = {kNoTet, kNoTet};
+    add(f, topo.face_tets[f][0]);
+    if (topo.face_tets[f][1] != kNoTet) add(f, topo.face_tets[f][1]);
   }
-  return -1;
+  // Faces with more than two tets keep only two in the topology: find the rest.
+  if (!topo.nonmanifold_faces.empty()) {
+    std::vector<uint8_t> nm(topo.num_faces(), 0);
+    for (uint32_t f : topo.nonmanifold_faces) nm[f] = 1;
+    for (uint32_t t = 0; t < m.num_tets(); ++t)
+      for (uint32_t f : topo.tet_faces[t])
+        if (nm[f]) add(f, t);
+  }
+  return s;
 }
 
 }  // namespace zs
