@@ -9,6 +9,9 @@
 
 #include "image/image_compare.h"
 #include "mesh/default_mesh.h"
+#include "mesh/io/mesh_io.h"
+#include "scene/scene.h"
+#include "test_paths.h"
 #include "mesh/topology.h"
 #include "reference/reference_renderer.h"
 #include "test_meshes.h"
@@ -346,6 +349,71 @@ TEST(Stability, EyeInsideTheMesh) {
     EXPECT_EQ(b.rs.rays_hit, 72u * 54u);
     EXPECT_LE(b.diff(), 1e-5) << target.x;
   }
+}
+
+}  // namespace
+}  // namespace zs
+
+namespace zs {
+namespace {
+
+// Compares sampled rows of a band-rendered image with reference rows, without
+// ever holding the full image.
+struct SampledRows : BandSink {
+  std::vector<uint32_t> rows;
+  Image ref;  // row k = image row rows[k]
+  double max_diff = 0;
+  uint64_t compared = 0;
+  void band(uint32_t y0, uint32_t y1, const float* rgba) override {
+    for (size_t k = 0; k < rows.size(); ++k) {
+      if (rows[k] < y0 || rows[k] >= y1) continue;
+      const float* got = rgba + size_t(rows[k] - y0) * ref.width * 4;
+      for (size_t q = 0; q < size_t(ref.width) * 4; ++q)
+        max_diff = std::max(max_diff, double(std::abs(got[q] - ref.at(0, uint32_t(k))[q])));
+      ++compared;
+    }
+  }
+};
+
+// 16384² and 32768² renders of spx within a 768 MiB budget: rows sampled
+// across the mesh match the reference, and the process's peak memory stays
+// within the budget (plus 160 MiB for the program, mesh and reference rows).
+// Slow on purpose (2.5 and 9 minutes on two cores): the whole image is
+// rendered, in bands that run in turn.
+void huge_spx(const std::string& path, uint32_t size) {
+  const TetMesh m = read_mesh(path);
+  const Topology topo = build_topology(m);
+  {
+    RenderSettings rs;
+    rs.width = rs.height = size;
+    rs.camera = auto_camera(m, Projection::Perspective, size, size);
+    rs.tf = default_transfer_function(m);
+    rs.threads = 2;
+    rs.memory_budget_bytes = uint64_t(768) << 20;
+    SampledRows sink;
+    for (uint32_t k = 1; k < 24; ++k) sink.rows.push_back(uint32_t(uint64_t(size) * k / 24) + k % 3);
+    ReferenceStats rst;
+    sink.ref = render_reference_rows(m, topo, rs, sink.rows, &rst);
+    RenderStats st;
+    render_zsweep_bands(m, topo, rs, sink, 0, &st);
+    EXPECT_EQ(sink.compared, sink.rows.size()) << size;
+    EXPECT_LE(sink.max_diff, 1e-5) << size;
+    EXPECT_GT(rst.rays_hit, uint64_t(size) * 2) << size;
+    EXPECT_GT(st.bands, 1u) << "the budget forces bands in turn";
+    EXPECT_LE(st.peak_rss_bytes, rs.memory_budget_bytes + (uint64_t(160) << 20)) << size;
+    std::printf("%u²: %llu bands, peak RSS %.0f MiB, %.1f s, max diff %.2g over %zu rows\n", size,
+                (unsigned long long)st.bands, st.peak_rss_bytes / 1048576.0, st.ms_total / 1000, sink.max_diff,
+                sink.rows.size());
+  }
+}
+
+TEST(Stability, Huge16384OfSpxWithinABudget) {
+  ZS_REQUIRE_SHARED(path, "spx.off");
+  huge_spx(path, 16384);
+}
+TEST(Stability, Huge32768OfSpxWithinABudget) {
+  ZS_REQUIRE_SHARED(path, "spx.off");
+  huge_spx(path, 32768);
 }
 
 }  // namespace

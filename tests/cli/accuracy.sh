@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# `zsweep reference`, `zsweep compare` and `zsweep bench accuracy` end to end
+# on the embedded default scene: the engine matches the reference, the
+# approximate settings do not, and early termination stays within its bound.
+set -u
+zsweep=$1
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+"$zsweep" reference --width 96 --height 80 -o "$tmp/ref.exr" --stats "$tmp/ref.json" >/dev/null || fail "reference"
+"$zsweep" render --width 96 --height 80 -o "$tmp/z.exr" >/dev/null 2>&1 || fail "render"
+"$zsweep" render --width 96 --height 80 --integrator taylor2 -o "$tmp/t2.exr" >/dev/null 2>&1 || fail "render taylor2"
+"$zsweep" compare "$tmp/z.exr" "$tmp/ref.exr" --json > "$tmp/c.json" || fail "compare"
+"$zsweep" compare "$tmp/t2.exr" "$tmp/ref.exr" --json --diff "$tmp/d.png" > "$tmp/c2.json" || fail "compare taylor2"
+[ -s "$tmp/d.png" ] || fail "no difference image"
+python3 - "$tmp" <<'PY' || fail "reference/compare checks"
+import json, sys
+d = sys.argv[1]
+c, c2, st = (json.load(open(f"{d}/{n}")) for n in ("c.json", "c2.json", "ref.json"))
+assert c["max_abs"] <= 1e-5, c
+assert c["pixels_over_1_255"] == 0, c
+assert c2["max_abs"] > 1e-3, c2  # the 2nd-order expansion is an approximation
+assert st["lost_walks"] == 0 and st["rays_hit"] > 1000, st
+PY
+# A missing scene: one line naming the file, exit 1, no output image.
+out=$("$zsweep" reference "$tmp/nope.json" -o "$tmp/never.exr" 2>&1); rc=$?
+[ $rc -eq 1 ] || fail "missing scene: exit $rc"
+echo "$out" | grep -q "nope.json" || fail "missing scene: message '$out'"
+[ ! -e "$tmp/never.exr" ] || fail "output written for a missing scene"
+
+"$zsweep" bench accuracy default --sizes 64 --csv "$tmp/a.csv" --plots "$tmp/plots" >/dev/null 2>&1 \
+  || fail "bench accuracy exited non-zero"
+python3 - "$tmp/a.csv" <<'PY' || fail "accuracy CSV checks"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+by = {(r["group"], r["setting"]): r for r in rows}
+assert len(rows) == 4 + 7 + 6 + 5 + 3, len(rows)
+exact = float(by[("integrator", "exact")]["max_abs"])
+assert exact <= 1e-5, exact
+for s in ("linear", "preintegrated", "taylor2"):
+    assert float(by[("integrator", s)]["max_abs"]) > 10 * exact, s
+assert float(by[("scan", "span")]["max_abs"]) == float(by[("scan", "bbox")]["max_abs"])
+for t in (1, 2, 4, 8, 16):
+    r = by[("early-termination", f"t={t}")]
+    assert r["within_bound"] == "yes", r
+for n in (256, 64, 16, 4):
+    assert by[("max-list", f"max-list={n}")]["max_abs"] == by[("max-list", "max-list=0")]["max_abs"]
+PY
+for f in accuracy-default-64.png accuracy-rmse-default-64.png et-bound-default-64.png; do
+  [ -s "$tmp/plots/$f" ] || fail "missing $f"
+done
+echo "accuracy: ok"
