@@ -9,9 +9,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include "mesh/io/mesh_io.h"
 #include "mesh/topology.h"
 #include "scene/scene.h"
+#include "scene/scene_input.h"
 #include "util/atomic_file.h"
 #include "volume/zsweep_renderer.h"
 
@@ -69,13 +69,9 @@ std::vector<ScanBenchRow> run_scan_bench(const ScanBenchOptions& opt) {
   std::vector<ScanBenchRow> rows;
   const uint64_t budget = opt.memory_budget_bytes ? opt.memory_budget_bytes : default_memory_budget();
   for (const std::string& input : opt.inputs) {
-    Scene scene;
-    if (input.size() > 5 && input.substr(input.size() - 5) == ".json") {
-      scene = load_scene(input);
-    } else {
-      scene.mesh_path = input;
-    }
-    const TetMesh mesh = read_mesh(scene.mesh_path, scene.mesh_options);
+    const SceneInput in = load_scene_input(input, {});
+    const Scene& scene = in.scene;
+    const TetMesh& mesh = in.mesh;
     const Topology topo = build_topology(mesh);
     const std::string name = stem(input);
     for (uint32_t size : opt.sizes) {

@@ -23,6 +23,20 @@ std::vector<std::string> split(const std::string& s) {
   return out;
 }
 
+std::vector<uint32_t> parse_sizes(const std::string& list) {
+  std::vector<uint32_t> sizes;
+  for (const auto& s : split(list)) {
+    long v = 0;
+    try {
+      v = std::stol(s);
+    } catch (const std::exception&) {
+    }
+    if (v < 1 || v > 65536) throw std::runtime_error("--sizes: " + s + " is not an image size");
+    sizes.push_back(uint32_t(v));
+  }
+  return sizes;
+}
+
 }  // namespace
 
 void add_bench_report_command(CLI::App& bench);
@@ -57,12 +71,7 @@ void add_bench_command(CLI::App& app) {
   scan->callback([a] {
     ScanBenchOptions o;
     o.inputs = a->inputs;
-    o.sizes.clear();
-    for (const auto& s : split(a->sizes)) {
-      const long v = std::stol(s);
-      if (v < 1 || v > 65536) throw std::runtime_error("--sizes: " + s + " is not an image size");
-      o.sizes.push_back(uint32_t(v));
-    }
+    o.sizes = parse_sizes(a->sizes);
     o.strategies.clear();
     for (const auto& s : split(a->strategies)) {
       ScanStrategy k;
@@ -109,12 +118,7 @@ void add_bench_accuracy_command(CLI::App& bench) {
   acc->callback([a] {
     AccuracyBenchOptions o;
     o.inputs = a->inputs;
-    o.sizes.clear();
-    for (const auto& s : split(a->sizes)) {
-      const long v = std::stol(s);
-      if (v < 1 || v > 65536) throw std::runtime_error("--sizes: " + s + " is not an image size");
-      o.sizes.push_back(uint32_t(v));
-    }
+    o.sizes = parse_sizes(a->sizes);
     o.groups = split(a->groups);
     for (const auto& g : o.groups)
       if (g != "integrator" && g != "scan" && g != "early-termination" && g != "max-list" && g != "resolution")

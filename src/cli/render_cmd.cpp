@@ -1,14 +1,10 @@
 // `zsweep render SCENE.json -o OUT` or `zsweep render MESH -o OUT` (automatic
 // camera and transfer function), or `zsweep render -o OUT` for the embedded
 // default scene.
-#include <unistd.h>
-
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <memory>
-#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>

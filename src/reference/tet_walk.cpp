@@ -16,9 +16,9 @@ bool tet_exit(const TetMesh& m, const Topology& topo, uint32_t tet, uint32_t ent
   const glm::dvec3 e1 = m.points[tv[1]] - p0, e2 = m.points[tv[2]] - p0, e3 = m.points[tv[3]] - p0;
   // Rows of the inverse edge matrix are the gradients of lambda_1..3.
   const glm::dvec3 c23 = glm::cross(e2, e3), c31 = glm::cross(e3, e1), c12 = glm::cross(e1, e2);
+  // The walk never enters a flat tet (SolidFaces); this only guards the division.
   const double det = glm::dot(e1, c23);
-  const double L = std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)});
-  if (!(std::abs(det) > 1e-12 * L * std::sqrt(L))) return false;
+  if (det == 0) return false;
   const glm::dvec3 g[3] = {c23 / det, c31 / det, c12 / det};
   const glm::dvec3 po = o - p0;
   double l_sum = 0, d_sum = 0;

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "scene/camera.h"
+#include "volume/render_settings.h"
 #include "volume/transfer_function.h"
 
 #include "mesh/hex_split.h"
@@ -83,6 +84,21 @@ inline void spec_ray(const Camera& c, uint32_t W, uint32_t H, int i, int j, glm:
     *o = c.eye;
     *d = glm::normalize(f + a * 2 * t * W / H * r + b * 2 * t * u);
   }
+}
+
+// The oblique camera the engine and reference tests share.
+inline RenderSettings settings(uint32_t W, uint32_t H, Projection proj, TransferFunction tf) {
+  RenderSettings rs;
+  rs.width = W;
+  rs.height = H;
+  rs.camera.projection = proj;
+  rs.camera.eye = {2.5, 1.7, 4.0};
+  rs.camera.target = {0.1, -0.05, 0.0};
+  rs.camera.up = {0, 1, 0};
+  rs.camera.height = 3.2;
+  rs.camera.fov_y = 40;
+  rs.tf = std::move(tf);
+  return rs;
 }
 
 // Reference: march the ray through the box with fine midpoint steps.

@@ -18,16 +18,7 @@ using test::box_mesh;
 using test::spec_ray;
 
 RenderSettings ref_settings(uint32_t W, uint32_t H, Projection proj, TransferFunction tf) {
-  RenderSettings rs;
-  rs.width = W;
-  rs.height = H;
-  rs.camera.projection = proj;
-  rs.camera.eye = {2.5, 1.7, 4.0};
-  rs.camera.target = {0.1, -0.05, 0.0};
-  rs.camera.up = {0, 1, 0};
-  rs.camera.height = 3.2;
-  rs.camera.fov_y = 40;
-  rs.tf = std::move(tf);
+  RenderSettings rs = test::settings(W, H, proj, std::move(tf));
   rs.threads = 2;
   return rs;
 }
