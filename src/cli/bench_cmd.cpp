@@ -1,5 +1,6 @@
 // `zsweep bench scan MESH... --sizes ... --strategies ... [--variants ...]
 //  --csv OUT.csv [--plots DIR] [--repeat N]`
+#include <charconv>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -27,11 +28,8 @@ std::vector<uint32_t> parse_sizes(const std::string& list) {
   std::vector<uint32_t> sizes;
   for (const auto& s : split(list)) {
     long v = 0;
-    try {
-      v = std::stol(s);
-    } catch (const std::exception&) {
-    }
-    if (v < 1 || v > 65536) throw std::runtime_error("--sizes: " + s + " is not an image size");
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || end != s.data() + s.size() || v < 1 || v > 65536) throw std::runtime_error("--sizes: " + s + " is not an image size");
     sizes.push_back(uint32_t(v));
   }
   return sizes;
