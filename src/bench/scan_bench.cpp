@@ -44,23 +44,25 @@ TransferFunction bench_tf(const TetMesh& m) {
 
 std::string stem(const std::string& p) { return std::filesystem::path(p).stem().string(); }
 
-// Compares bands against a reference image without keeping a second one.
-struct DiffSink : BandSink {
+// Compares tiles against a reference image without keeping a second one.
+struct DiffSink : TileSink {
   const Image* ref = nullptr;
   Image* keep = nullptr;
   double max_diff = 0;
-  void band(uint32_t y0, uint32_t y1, const float* rgba) override {
-    const size_t n = size_t(y1 - y0) * (ref ? ref->width : keep->width) * 4;
-    if (ref) {
-      const float* r = ref->at(0, y0);
-      for (size_t k = 0; k < n; ++k) max_diff = std::max(max_diff, double(std::abs(rgba[k] - r[k])));
+  void tile(const TileRect& t, const float* rgba) override {
+    const size_t n = size_t(t.width()) * 4;
+    for (uint32_t y = t.y0; y < t.y1; ++y, rgba += n) {
+      if (ref) {
+        const float* r = ref->at(t.x0, y);
+        for (size_t k = 0; k < n; ++k) max_diff = std::max(max_diff, double(std::abs(rgba[k] - r[k])));
+      }
+      if (keep) std::copy(rgba, rgba + n, keep->at(t.x0, y));
     }
-    if (keep) std::copy(rgba, rgba + n, keep->at(0, y0));
   }
 };
 
-struct NullSink : BandSink {
-  void band(uint32_t, uint32_t, const float*) override {}
+struct NullSink : TileSink {
+  void tile(const TileRect&, const float*) override {}
 };
 
 }  // namespace
@@ -82,6 +84,7 @@ std::vector<ScanBenchRow> run_scan_bench(const ScanBenchOptions& opt) {
       rs.progress = false;
       rs.raster_only = size > opt.raster_only_above;
       rs.face_area_stats = true;
+      rs.phase_times = true;  // the seed's tables split list generation from scan
       if (!scene.has_camera) rs.camera = seed_camera(mesh, size, size);
       if (!scene.has_transfer_function) rs.tf = bench_tf(mesh);
       // The bounding box first: the reference for missing pixels and images.
@@ -117,8 +120,8 @@ std::vector<ScanBenchRow> run_scan_bench(const ScanBenchOptions& opt) {
             sink.ref = &ref;
           }
           NullSink null;
-          BandSink& target = (sink.keep || sink.ref) ? static_cast<BandSink&>(sink) : static_cast<BandSink&>(null);
-          render_zsweep_bands(mesh, topo, rs, target, keep ? img_bytes * 2 : 0, &st);
+          TileSink& target = (sink.keep || sink.ref) ? static_cast<TileSink&>(sink) : static_cast<TileSink&>(null);
+          render_zsweep_tiles(mesh, topo, rs, target, keep ? img_bytes * 2 : 0, &st);
           const double total = st.ms_list_generation + st.ms_scan_convert;
           if (r == 0 || total < row.total_ms) {
             row.list_generation_ms = st.ms_list_generation;

@@ -35,7 +35,7 @@ EdgeFn make_edge(const ScreenVertex& p, const ScreenVertex& q, bool ccw) {
 bool setup_triangle(const ScreenVertex v[3], bool perspective, ScreenTriangle* t) {
   const double e1x = v[1].x - v[0].x, e1y = v[1].y - v[0].y;
   const double e2x = v[2].x - v[0].x, e2y = v[2].y - v[0].y;
-  const double det = e1x * e2y - e2x * e1y;
+  const double det = screen_det(v);
   if (det == 0 || !std::isfinite(det)) return false;
   t->perspective = perspective;
   const bool ccw = det > 0;

@@ -54,6 +54,12 @@ struct ScreenTriangle {
   void attributes(double X, double Y, double* z, double* s) const;
 };
 
+// Twice the signed screen area (the edge-function determinant); zero or
+// non-finite for a triangle that covers no pixel centre's interior.
+inline double screen_det(const ScreenVertex v[3]) {
+  return (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
+}
+
 // Returns false (and sets nothing useful) for a triangle with zero screen area:
 // seen exactly edge-on, it contains no pixel centre in its interior.
 bool setup_triangle(const ScreenVertex v[3], bool perspective, ScreenTriangle* t);

@@ -10,9 +10,7 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
 
-#include "raster/raster_target.h"
 #include "scene/camera.h"
 #include "volume/pixel_lists.h"
 #include "volume/segment_integrator.h"
@@ -22,29 +20,20 @@ namespace zs {
 class Compositor {
  public:
   // et_transmittance: stop a pixel once its transmittance is below this (0 = never).
-  Compositor(const View& view, const Viewport& vp, const SegmentIntegrator& integ, double et_transmittance);
+  Compositor(const View& view, const SegmentIntegrator& integ, double et_transmittance)
+      : view_(view), integ_(integ), et_(et_transmittance) {}
 
-  // Composites pixel p's fragments with depth < z_limit (all if z_limit is +inf).
-  void composite(PixelLists& lists, uint32_t p, float z_limit);
-  bool done(uint32_t p) const { return done_[p] != 0; }
-
-  uint32_t num_pixels() const { return n_; }
-  double transmittance(uint32_t p) const { return T_[p]; }
-  const double* rgb(uint32_t p) const { return &rgb_[3 * size_t(p)]; }
+  // Composites the fragments of the pixel at image coordinates (X, Y) with
+  // depth < z_limit (all if z_limit is +inf), freeing them.
+  void composite(PixelRecord& px, FragmentPool& pool, float z_limit, int X, int Y);
 
   uint64_t segments() const { return segments_; }
   uint64_t terminated_pixels() const { return terminated_; }
 
  private:
   const View& view_;
-  Viewport vp_;
-  uint32_t w_, n_;
   const SegmentIntegrator& integ_;
   double et_;
-  std::vector<double> rgb_, T_;
-  std::vector<float> last_z_, last_s_;
-  std::vector<int32_t> inside_;
-  std::vector<uint8_t> done_;
   uint64_t segments_ = 0, terminated_ = 0;
 };
 

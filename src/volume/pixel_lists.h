@@ -1,7 +1,12 @@
-// Per-pixel depth-sorted fragment lists in one pooled array (no allocation
-// per fragment): singly linked, with a tail index so that the common case of
-// the sweep — a fragment deeper than everything already listed — appends in
-// O(1) ("tail-first insertion"). Freed fragments go to a free list.
+// Per-pixel depth-sorted fragment lists (digest §1.1 stage 2) in one pooled
+// array per tile (no allocation per fragment): singly linked, with a tail
+// index so that the sweep's common case — a fragment deeper than everything
+// already listed — appends in O(1). Freed fragments go to a free list, which
+// hands the most recently freed (cache-hot) slot out first.
+//
+// Everything the engine keeps for a pixel — list ends, inside count and the
+// compositing accumulators — sits in one 64-byte record, so touching a pixel
+// costs one cache line, and a tile's records (64² · 64 B = 256 KiB) stay in L2.
 #pragma once
 
 #include <cstddef>
@@ -24,37 +29,57 @@ struct Fragment {  // 16 bytes
 
 constexpr uint32_t kNil = UINT32_MAX;
 
-class PixelLists {
+struct alignas(64) PixelRecord {
+  double rgb[3];        // premultiplied colour so far, front to back
+  double T;             // transmittance so far
+  float last_z, last_s; // the previous fragment: start of the next segment
+  uint32_t head, tail;  // fragment list, kNil when empty
+  int32_t inside;       // entries minus exits (compositor.h)
+  uint32_t len;
+  uint8_t done;         // early-terminated: nothing behind matters
+  uint8_t active;       // listed in the tile's active pixels
+  void reset() {
+    rgb[0] = rgb[1] = rgb[2] = 0;
+    T = 1;
+    last_z = last_s = 0;
+    head = tail = kNil;
+    inside = 0;
+    len = 0;
+    done = active = 0;
+  }
+};
+static_assert(sizeof(PixelRecord) == 64, "one cache line per pixel");
+
+class FragmentPool {
  public:
   // max_fragments bounds the pool (the memory budget); it grows on demand.
-  PixelLists(size_t num_pixels, size_t max_fragments);
+  void reset(size_t max_fragments);
 
   // False when the pool is at its bound (the caller composites and retries).
-  bool insert(uint32_t pixel, float z, float s, uint32_t kind);
-
-  uint32_t head(uint32_t pixel) const { return head_[pixel]; }
+  bool insert(PixelRecord& px, float z, float s, uint32_t kind);
   const Fragment& at(uint32_t idx) const { return pool_[idx]; }
-  uint32_t length(uint32_t pixel) const { return len_[pixel]; }
   // Removes and frees the first fragment of a non-empty list.
-  void pop_front(uint32_t pixel);
-  void clear(uint32_t pixel);
-
-  // Pixels whose lists are non-empty (may hold a few stale entries; callers
-  // skip empty ones and call compact_active()).
-  const std::vector<uint32_t>& active() const { return active_; }
-  void compact_active();
+  void pop_front(PixelRecord& px) {
+    const uint32_t idx = px.head;
+    px.head = pool_[idx].next;
+    if (px.head == kNil) px.tail = kNil;
+    pool_[idx].next = free_;
+    free_ = idx;
+    --live_;
+    --px.len;
+  }
+  void clear(PixelRecord& px) {
+    while (px.head != kNil) pop_front(px);
+  }
 
   size_t live_fragments() const { return live_; }
   size_t peak_fragments() const { return peak_; }
-  size_t capacity_bytes() const { return pool_.capacity() * sizeof(Fragment); }
+  size_t max_fragments() const { return max_; }
 
  private:
   std::vector<Fragment> pool_;
-  std::vector<uint32_t> head_, tail_, len_;
-  std::vector<uint8_t> in_active_;
-  std::vector<uint32_t> active_;
   uint32_t free_ = kNil;
-  size_t max_fragments_, live_ = 0, peak_ = 0;
+  size_t max_ = 0, live_ = 0, peak_ = 0;
 };
 
 }  // namespace zs

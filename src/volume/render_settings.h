@@ -31,6 +31,9 @@ struct RenderSettings {
   uint32_t max_list_length = 0;         // 0 = unlimited
   uint64_t memory_budget_bytes = 0;     // 0 = default (half of physical memory)
   int threads = 1;
+  // Screen tiles are swept independently (zsweep_renderer.h); the image does
+  // not depend on their size, only speed and memory do.
+  uint32_t tile_size = 64;
   bool progress = false;                // progress bar on stderr
   // Benchmarks: scan-convert every face but keep no fragments (no lists, no
   // compositing; the image is the background).
@@ -38,6 +41,9 @@ struct RenderSettings {
   // Sum screen face and bounding-box areas (Table 4.4); off in plain renders
   // so the per-face hot path does not pay three square roots for a statistic.
   bool face_area_stats = false;
+  // Time the per-face phases (list generation, scan, insert, composite):
+  // four clock reads per face, so only the benchmarks that report them ask.
+  bool phase_times = false;
 };
 
 }  // namespace zs

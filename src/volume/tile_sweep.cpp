@@ -1,0 +1,210 @@
+#include "volume/tile_sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "raster/bbox_scan.h"
+#include "raster/span_scan.h"
+#include "volume/compositor.h"
+#include "volume/zsweep_renderer.h"
+
+namespace zs {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+std::string mib(uint64_t b) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.1f MiB", double(b) / 1048576.0);
+  return buf;
+}
+
+// The sweep of one tile, with its state in one place.
+class TileSweep {
+ public:
+  TileSweep(const SweepShared& in, const Viewport& vp, uint64_t max_fragments, TileWorkspace& ws, RenderStats& S)
+      : in_(in), rs_(in.rs), vp_(vp), vw_(uint32_t(vp.x1 - vp.x0)), ws_(ws), S_(S),
+        comp_(in.view, in.integ, rs_.early_termination > 0 ? rs_.early_termination / 510.0 : 0.0),
+        timed_(rs_.phase_times) {
+    const size_t npix = size_t(vw_) * uint32_t(vp.y1 - vp.y0);
+    ws.px.resize(npix);
+    for (PixelRecord& p : ws.px) p.reset();
+    ws.active.clear();
+    ws.pool.reset(max_fragments);
+  }
+
+  void run(uint32_t tile) {
+    const auto& bins = in_.bins;
+    float z_target = -INFINITY;
+    for (uint64_t b = bins.offset[tile]; b < bins.offset[tile + 1]; ++b) {
+      const uint32_t k = bins.items[b];
+      const float z_sweep = in_.items.z_sweep[k];
+      if (z_sweep > z_target) {
+        // The sweep passed z_target: every face still to come starts at or
+        // after z_sweep, so every fragment before it is final. Composite them
+        // all and aim at the farthest vertex of the faces now being projected.
+        if (!ws_.active.empty()) {
+          ++S_.composite_events;
+          composite_all(z_sweep);
+        }
+        z_target = z_sweep;
+      }
+      z_target = std::max(z_target, in_.items.z_max[k]);
+      ScreenVertex tri[3];
+      item_triangle(in_.items, k, in_.topo, in_.sv, in_.near, tri);
+      const uint32_t id = in_.items.id[k];
+      project(tri, (id & kNearItem) ? in_.near[id & ~kNearItem].cls : in_.cls[id], z_sweep);
+    }
+    composite_all(INFINITY);
+    S_.segments += comp_.segments();
+    S_.early_terminated_pixels += comp_.terminated_pixels();
+    S_.peak_fragments = std::max<uint64_t>(S_.peak_fragments, ws_.pool.peak_fragments());
+    finish();
+  }
+
+ private:
+  void composite_pixel(uint32_t p, float z_limit) {
+    comp_.composite(ws_.px[p], ws_.pool, z_limit, vp_.x0 + int(p % vw_), vp_.y0 + int(p / vw_));
+  }
+
+  void composite_all(float z_limit) {
+    const auto t0 = timed_ ? Clock::now() : Clock::time_point{};
+    size_t n = 0;
+    for (uint32_t p : ws_.active) {
+      composite_pixel(p, z_limit);
+      if (ws_.px[p].head != kNil) ws_.active[n++] = p;
+      else ws_.px[p].active = 0;
+    }
+    ws_.active.resize(n);
+    if (timed_) S_.ms_composite += ms_between(t0, Clock::now());
+  }
+
+  // Scan-converts one triangle inside the tile and inserts its fragments
+  // (z_sweep: the depth before which every fragment is final).
+  void project(const ScreenVertex tri[3], FaceClass fclass, float z_sweep) {
+    // list_generation: per-face set-up (plane equations; B-Convert's edge
+    // and compact lists); scan_convert: the pixel loop.
+    const auto t0 = timed_ ? Clock::now() : Clock::time_point{};
+    ScreenTriangle st;
+    const bool ok = setup_triangle(tri, in_.view.perspective(), &st);
+    bool use_bconvert = ok && rs_.scan == ScanStrategy::BConvert;
+    // The size test is against the whole image, so B-Convert images do not
+    // depend on the tiling.
+    const Viewport image{0, 0, int(rs_.width), int(rs_.height)};
+    if (use_bconvert && !bconvert_list(tri, rs_.bconvert_variant, image, ws_.bscratch)) {
+      use_bconvert = false;
+      ++S_.bconvert_fallbacks;
+    }
+    const auto t1 = timed_ ? Clock::now() : Clock::time_point{};
+    if (timed_) S_.ms_list_generation += ms_between(t0, t1);
+    if (!ok) {
+      ++S_.faces_degenerate;
+      return;
+    }
+    ++S_.faces_projected;
+    if (rs_.face_area_stats) add_face_area(tri, st);
+    FaceFragments& frags = ws_.frags;
+    frags.clear();
+    ScanCounters sc;
+    if (use_bconvert) {
+      RowEndMisses re;
+      bconvert_scan(st, vp_, ws_.bscratch, frags, sc, &re);
+      for (int k = 0; k < 4; ++k) S_.row_end_misses[k] += re.count[k];
+    } else if (rs_.scan == ScanStrategy::Span) {
+      scan_span(st, vp_, frags, sc);
+    } else {
+      scan_bbox(st, vp_, frags, sc);
+    }
+    S_.pixel_tests += sc.pixel_tests;
+    S_.pixel_hits += sc.pixel_hits;
+    S_.pixel_misses += sc.pixel_misses;
+    auto t2 = timed_ ? Clock::now() : Clock::time_point{};
+    if (timed_) S_.ms_scan_convert += ms_between(t1, t2);
+    if (rs_.raster_only) return;
+
+    const uint32_t kind = fclass == FaceClass::Entry ? kEntry : fclass == FaceClass::Exit ? kExit : kInterior;
+    for (size_t k = 0; k < frags.size(); ++k) {
+      const uint32_t p = uint32_t(frags.y[k] - vp_.y0) * vw_ + uint32_t(frags.x[k] - vp_.x0);
+      PixelRecord& px = ws_.px[p];
+      if (px.done) continue;  // early-terminated: nothing behind matters
+      // Fragments this pixel holds before the sweep plane are final: composite
+      // them now, while the record is in cache.
+      if (px.head != kNil && ws_.pool.at(px.head).z < z_sweep) composite_pixel(p, z_sweep);
+      if (px.done) continue;
+      const float z = float(frags.z[k] - in_.z_origin), s = float(frags.s[k]);
+      if (!ws_.pool.insert(px, z, s, kind)) {
+        // Pool at its budget: composite everything already final (before
+        // the sweep plane) everywhere, then retry once.
+        ++S_.budget_flushes;
+        composite_all(z_sweep);
+        if (!ws_.pool.insert(px, z, s, kind))
+          throw std::runtime_error("memory budget too small: " + std::to_string(ws_.pool.live_fragments()) +
+                                   " fragments (" + mib(ws_.pool.live_fragments() * sizeof(Fragment)) +
+                                   ") must be pending at once in one tile of this view");
+      }
+      if (!px.active) {
+        px.active = 1;
+        ws_.active.push_back(p);
+      }
+      ++S_.fragments;
+      if (px.len > S_.max_list_length) S_.max_list_length = px.len;
+      if (rs_.max_list_length && px.len > rs_.max_list_length) {
+        ++S_.forced_composites;  // force this pixel's final fragments out now
+        composite_pixel(p, z_sweep);
+      }
+    }
+    if (timed_) S_.ms_insert += ms_between(t2, Clock::now());
+  }
+
+  // Heron's formula on the screen edges (Eqs. 4.1-4.3) and the box area,
+  // for the face / bounding-box ratio of Table 4.4.
+  void add_face_area(const ScreenVertex tri[3], const ScreenTriangle& st) {
+    const double e0 = std::hypot(tri[1].x - tri[0].x, tri[1].y - tri[0].y);
+    const double e1 = std::hypot(tri[2].x - tri[1].x, tri[2].y - tri[1].y);
+    const double e2 = std::hypot(tri[0].x - tri[2].x, tri[0].y - tri[2].y);
+    const double hs = 0.5 * (e0 + e1 + e2);
+    S_.face_area += std::sqrt(std::max(0.0, hs * (hs - e0) * (hs - e1) * (hs - e2)));
+    S_.bbox_area += (st.max_x - st.min_x) * (st.max_y - st.min_y);
+  }
+
+  // out = I + (1 - alpha)·background, alpha = 1 - T (premultiplied).
+  void finish() {
+    const size_t npix = ws_.px.size();
+    ws_.out.resize(npix * 4);
+    const double* bg = rs_.background;
+    for (size_t p = 0; p < npix; ++p) {
+      const PixelRecord& px = ws_.px[p];
+      const double T = px.T;
+      float* o = &ws_.out[p * 4];
+      for (int k = 0; k < 3; ++k) o[k] = float(px.rgb[k] + T * bg[k]);
+      o[3] = float((1.0 - T) + T * bg[3]);
+      if (T < 1.0) ++S_.rendered_pixels;
+    }
+  }
+
+  const SweepShared& in_;
+  const RenderSettings& rs_;
+  Viewport vp_;
+  uint32_t vw_;
+  TileWorkspace& ws_;
+  RenderStats& S_;
+  Compositor comp_;
+  bool timed_;
+};
+
+}  // namespace
+
+void sweep_tile(const SweepShared& in, uint32_t tile, const Viewport& vp, uint64_t max_fragments, TileWorkspace& ws,
+                RenderStats& stats) {
+  TileSweep(in, vp, max_fragments, ws, stats).run(tile);
+}
+
+}  // namespace zs

@@ -1,0 +1,57 @@
+// One tile's sweep (digest §1.2) over its bin of faces, in the global sweep
+// order: scan-convert each face inside the tile, insert its fragments into
+// the pixel lists, and composite every fragment the sweep plane has passed —
+// at z_target events for the whole tile, and for a single pixel whenever a
+// new fragment arrives in it (its fragments before the plane are final then,
+// and its record is in cache).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raster/bconvert_scan.h"
+#include "raster/raster_target.h"
+#include "scene/camera.h"
+#include "volume/face_classes.h"
+#include "volume/near_clip.h"
+#include "volume/pixel_lists.h"
+#include "volume/render_settings.h"
+#include "volume/segment_integrator.h"
+#include "volume/sweep_order.h"
+#include "volume/tile_bins.h"
+
+namespace zs {
+
+struct RenderStats;
+
+// Everything the tiles share, read-only while they run.
+struct SweepShared {
+  const Topology& topo;
+  const RenderSettings& rs;
+  const View& view;
+  const SegmentIntegrator& integ;
+  std::vector<ScreenVertex> sv;  // every vertex in view space
+  std::vector<FaceClass> cls;    // per face
+  std::vector<NearTriangle> near;
+  SweepItems items;
+  TileBins bins;
+  double z_origin = 0;  // fragments store depth - z_origin
+};
+
+// Per-thread scratch, reused from tile to tile.
+struct TileWorkspace {
+  std::vector<PixelRecord> px;
+  std::vector<uint32_t> active;  // pixels whose lists may be non-empty
+  FragmentPool pool;
+  FaceFragments frags;
+  BConvertScratch bscratch;
+  std::vector<float> out;  // the finished tile, RGBA
+};
+
+// Sweeps tile `vp` (bin `tile`); leaves its premultiplied RGBA over the
+// background in ws.out. Throws std::runtime_error when more than
+// max_fragments must be pending at once.
+void sweep_tile(const SweepShared& in, uint32_t tile, const Viewport& vp, uint64_t max_fragments, TileWorkspace& ws,
+                RenderStats& stats);
+
+}  // namespace zs
