@@ -13,8 +13,10 @@ void Compositor::composite(PixelRecord& px, FragmentPool& pool, float z_limit, i
     const Fragment f = pool.at(px.head);
     if (!(f.z < z_limit)) break;
     pool.pop_front(px);
+    const SegmentEnd end = integ_.end(f.s);
     if (px.inside > 0 && f.z > px.last_z) {
-      const SegmentLight seg = integ_.integrate(px.last_s, f.s, double(f.z - px.last_z) * len_factor);
+      const SegmentLight seg = integ_.integrate(px.last_s, SegmentEnd{px.last_k, px.last_L}, f.s, end,
+                                                double(f.z - px.last_z) * len_factor);
       const double T = px.T;
       px.rgb[0] += T * seg.rgb[0];
       px.rgb[1] += T * seg.rgb[1];
@@ -29,7 +31,7 @@ void Compositor::composite(PixelRecord& px, FragmentPool& pool, float z_limit, i
       }
     }
     if (f.kind == kEntry) {
-      ++px.inside;
+      if (px.inside < INT16_MAX) ++px.inside;
     } else if (f.kind == kExit) {
       // Clamped: an exit with no matching entry (a ray grazing a silhouette
       // vertex or edge, which has zero length inside) must not go negative.
@@ -37,6 +39,8 @@ void Compositor::composite(PixelRecord& px, FragmentPool& pool, float z_limit, i
     }
     px.last_z = f.z;
     px.last_s = f.s;
+    px.last_k = int16_t(end.k);
+    px.last_L = end.L;
   }
 }
 

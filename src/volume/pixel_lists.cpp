@@ -30,7 +30,7 @@ bool FragmentPool::insert(PixelRecord& px, float z, float s, uint32_t kind) {
   f.s = s;
   f.kind = kind;
   if (++live_ > peak_) peak_ = live_;
-  ++px.len;
+  if (px.len != UINT16_MAX) ++px.len;
   if (px.head == kNil) {
     f.next = kNil;
     px.head = px.tail = idx;

@@ -32,18 +32,22 @@ constexpr uint32_t kNil = UINT32_MAX;
 struct alignas(64) PixelRecord {
   double rgb[3];        // premultiplied colour so far, front to back
   double T;             // transmittance so far
-  float last_z, last_s; // the previous fragment: start of the next segment
+  double last_L;        // the previous fragment's SegmentEnd (ln(1 - a))...
+  float last_z, last_s; // ...its depth and scalar: where the next segment starts
   uint32_t head, tail;  // fragment list, kNil when empty
-  int32_t inside;       // entries minus exits (compositor.h)
-  uint32_t len;
+  int16_t inside;       // entries minus exits (compositor.h), saturating
+  int16_t last_k;       // ...and its transfer-function interval
+  uint16_t len;         // list length, saturating at 65535
   uint8_t done;         // early-terminated: nothing behind matters
   uint8_t active;       // listed in the tile's active pixels
   void reset() {
     rgb[0] = rgb[1] = rgb[2] = 0;
     T = 1;
+    last_L = 0;
     last_z = last_s = 0;
     head = tail = kNil;
     inside = 0;
+    last_k = 0;
     len = 0;
     done = active = 0;
   }
@@ -66,7 +70,8 @@ class FragmentPool {
     pool_[idx].next = free_;
     free_ = idx;
     --live_;
-    --px.len;
+    if (px.head == kNil) px.len = 0;
+    else if (px.len != UINT16_MAX) --px.len;  // once saturated, stays so until empty
   }
   void clear(PixelRecord& px) {
     while (px.head != kNil) pop_front(px);

@@ -83,18 +83,23 @@ bool parse_integrator(const std::string& s, Integrator* out) {
 
 SegmentLight integrate_linear_piece(const double c0[3], double a0, const double c1[3], double a1, double len,
                                     double unit) {
+  return integrate_linear_piece(c0, a0, std::log(1.0 - a0), c1, a1, std::log(1.0 - a1), len, unit);
+}
+
+SegmentLight integrate_linear_piece(const double c0[3], double a0, double L0, const double c1[3], double a1,
+                                    double L1, double len, double unit) {
   SegmentLight out{{0, 0, 0}, 1.0};
   if (!(len > 0)) return out;
   const double w0 = 1.0 - a0, w1 = 1.0 - a1;
   double T, J;  // transmittance over the piece, and J = integral of T(t) dt
   const bool varying_colour = c0[0] != c1[0] || c0[1] != c1[1] || c0[2] != c1[2];
   if (w0 == w1) {
-    const double tau = -std::log(w0) / unit;
+    const double tau = -L0 / unit;
     if (tau == 0) return out;
     T = std::exp(-tau * len);
     J = -std::expm1(-tau * len) / tau;
   } else {
-    const double L0 = std::log(w0), L1 = std::log(w1), kappa = len / unit;
+    const double kappa = len / unit;
     T = std::exp(kappa * mean_log(w0, L0, w1, L1));
     J = 0;
     if (varying_colour) {
@@ -116,7 +121,7 @@ SegmentLight integrate_linear_piece(const double c0[3], double a0, const double 
       const double dc = std::max({std::abs(c1[0] - c0[0]), std::abs(c1[1] - c0[1]), std::abs(c1[2] - c0[2])});
       if (dc * y6 <= 1e-9 * 100800.0) {
         const double gp0 = -kappa * d / w0, gp1 = -kappa * d / w1;
-        J = len * (0.5 * (1.0 + T) + (-g0 + g1 * T) / 10.0 + ((g0 * g0 - gp0) + (g1 * g1 - gp1) * T) / 120.0);
+        J = len * (0.5 * (1.0 + T) + (g1 * T - g0) * 0.1 + ((g0 * g0 - gp0) + (g1 * g1 - gp1) * T) * (1.0 / 120));
       } else {
         const PieceDepth depth{w0, d / len, 1.0 / unit};
         auto trans = [&](double t) { return std::exp(-depth(t)); };
@@ -127,12 +132,15 @@ SegmentLight integrate_linear_piece(const double c0[3], double a0, const double 
     }
   }
   // I = ∫ c τ T dt = [-c T] + c' ∫ T dt  (integration by parts, c linear).
-  for (int k = 0; k < 3; ++k) out.rgb[k] = c0[k] - c1[k] * T + (c1[k] - c0[k]) / len * J;
+  const double J_len = J / len;
+  for (int k = 0; k < 3; ++k) out.rgb[k] = c0[k] - c1[k] * T + (c1[k] - c0[k]) * J_len;
   out.T = T;
   return out;
 }
 
 SegmentIntegrator::SegmentIntegrator(const TransferFunction& tf, Integrator kind) : tf_(tf), kind_(kind) {
+  for (size_t k = 0; k < tf_.breakpoints().size(); ++k)
+    L_at_bs_.push_back(std::log(1.0 - tf_.rgba_at_breakpoint(int(k))[3]));
   if (kind_ != Integrator::Preintegrated) return;
   // psi(tf·D, tb·D) = (1/D) ∫_0^D exp(-Φ(t)) dt for tau linear from tf to tb,
   // tabulated over gamma = x/(1+x) (x = tau·D), as Moreland and Angel (2004).
@@ -146,10 +154,17 @@ SegmentIntegrator::SegmentIntegrator(const TransferFunction& tf, Integrator kind
     }
 }
 
-SegmentLight SegmentIntegrator::integrate(double s0, double s1, double L) const {
+SegmentEnd SegmentIntegrator::end(double s) const {
+  if (kind_ != Integrator::Exact) return {};
+  const int k = tf_.interval(s);
+  return {k, std::log(1.0 - tf_.rgba_in(k, s)[3])};
+}
+
+SegmentLight SegmentIntegrator::integrate(double s0, const SegmentEnd& e0, double s1, const SegmentEnd& e1,
+                                          double L) const {
   if (!(L > 0)) return {{0, 0, 0}, 1.0};
   switch (kind_) {
-    case Integrator::Exact: return exact(s0, s1, L);
+    case Integrator::Exact: return exact(s0, e0, s1, e1, L);
     case Integrator::Linear: return linear(s0, s1, L);
     case Integrator::Preintegrated: return preintegrated(s0, s1, L);
     case Integrator::Taylor2: return taylor2(s0, s1, L);
@@ -162,35 +177,40 @@ SegmentLight SegmentIntegrator::linear(double s0, double s1, double L) const {
   return integrate_linear_piece(a.data(), a[3], b.data(), b[3], L, tf_.unit_distance());
 }
 
-SegmentLight SegmentIntegrator::exact(double s0, double s1, double L) const {
-  const int k0 = tf_.interval(s0), k1 = tf_.interval(s1);
+SegmentLight SegmentIntegrator::exact(double s0, const SegmentEnd& e0, double s1, const SegmentEnd& e1,
+                                      double L) const {
+  const int k0 = e0.k, k1 = e1.k;
+  const double unit = tf_.unit_distance();
   if (k0 == k1) {
     // Within one interval colour and opacity are linear along the segment
     // (the common case): one piece.
     const auto a = tf_.rgba_in(k0, s0), b = tf_.rgba_in(k0, s1);
-    return integrate_linear_piece(a.data(), a[3], b.data(), b[3], L, tf_.unit_distance());
+    return integrate_linear_piece(a.data(), a[3], e0.L, b.data(), b[3], e1.L, L, unit);
   }
   // Split where the scalar crosses breakpoints, in the order the ray meets them.
   const auto& bs = tf_.breakpoints();
   SegmentLight acc{{0, 0, 0}, 1.0};
-  double t_prev = 0.0;
+  double t_prev = 0.0, L_prev = e0.L;
   std::array<double, 4> v_prev = tf_.rgba_in(k0, s0);
-  auto add_piece = [&](double t_next, const std::array<double, 4>& v_next) {
-    const SegmentLight p = integrate_linear_piece(v_prev.data(), v_prev[3], v_next.data(), v_next[3],
-                                                  (t_next - t_prev) * L, tf_.unit_distance());
+  auto add_piece = [&](double t_next, const std::array<double, 4>& v_next, double L_next) {
+    const SegmentLight p = integrate_linear_piece(v_prev.data(), v_prev[3], L_prev, v_next.data(), v_next[3], L_next,
+                                                  (t_next - t_prev) * L, unit);
     for (int k = 0; k < 3; ++k) acc.rgb[k] += acc.T * p.rgb[k];
     acc.T *= p.T;
     t_prev = t_next;
     v_prev = v_next;
+    L_prev = L_next;
   };
   const double inv = 1.0 / (s1 - s0);
   if (k1 > k0) {
-    for (int k = k0 + 1; k <= k1; ++k) add_piece((bs[size_t(k)] - s0) * inv, tf_.rgba_at_breakpoint(k));
+    for (int k = k0 + 1; k <= k1; ++k)
+      add_piece((bs[size_t(k)] - s0) * inv, tf_.rgba_at_breakpoint(k), L_at_bs_[size_t(k)]);
   } else {
     // Decreasing scalar: cross breakpoints k0, k0-1, ..., k1+1.
-    for (int k = k0; k > k1; --k) add_piece((bs[size_t(k)] - s0) * inv, tf_.rgba_at_breakpoint(k));
+    for (int k = k0; k > k1; --k)
+      add_piece((bs[size_t(k)] - s0) * inv, tf_.rgba_at_breakpoint(k), L_at_bs_[size_t(k)]);
   }
-  add_piece(1.0, tf_.rgba_in(k1, s1));
+  add_piece(1.0, tf_.rgba_in(k1, s1), e1.L);
   return acc;
 }
 

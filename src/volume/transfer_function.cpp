@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace zs {
 
@@ -55,6 +56,10 @@ TransferFunction::TransferFunction(std::vector<ColorPoint> color, std::vector<Op
   for (const auto& p : opacity_) bs_.push_back(p.s);
   std::sort(bs_.begin(), bs_.end());
   bs_.erase(std::unique(bs_.begin(), bs_.end()), bs_.end());
+  // The compositor keeps a pixel's current interval in 16 bits.
+  if (bs_.size() > size_t(kMaxBreakpoints))
+    throw std::invalid_argument("transfer_function: at most " + std::to_string(kMaxBreakpoints) +
+                                " distinct colour and opacity points");
   // Both colour and opacity are linear between merged breakpoints, so their
   // values there define them everywhere.
   for (double b : bs_) {

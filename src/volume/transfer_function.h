@@ -19,6 +19,8 @@ struct OpacityPoint {
 
 // Opacity is clamped to this so that extinction -ln(1-a) stays finite.
 constexpr double kMaxOpacity = 1.0 - 1e-6;
+// Distinct colour and opacity positions a transfer function may have.
+constexpr int kMaxBreakpoints = 32000;
 
 class TransferFunction {
  public:
