@@ -91,21 +91,21 @@ SegmentLight integrate_linear_piece(const double c0[3], double a0, double L0, co
   SegmentLight out{{0, 0, 0}, 1.0};
   if (!(len > 0)) return out;
   const double w0 = 1.0 - a0, w1 = 1.0 - a1;
-  double T, J;  // transmittance over the piece, and J = integral of T(t) dt
+  double T, Jm;  // transmittance over the piece, and the mean of T(t) over it
   const bool varying_colour = c0[0] != c1[0] || c0[1] != c1[1] || c0[2] != c1[2];
   if (w0 == w1) {
     const double tau = -L0 / unit;
     if (tau == 0) return out;
     T = std::exp(-tau * len);
-    J = -std::expm1(-tau * len) / tau;
+    Jm = varying_colour ? -std::expm1(-tau * len) / (tau * len) : 0.0;
   } else {
     const double kappa = len / unit;
     T = std::exp(kappa * mean_log(w0, L0, w1, L1));
-    J = 0;
+    Jm = 0;
     if (varying_colour) {
-      // J only enters as (c1 - c0)/len · J. On x = t/len in [0, 1], f = T(x)
-      // = exp(-D(x)) with D' = g = -kappa·ln w(x); g and g' are known at both
-      // ends, so f, f', f'' are too, and the two-point Hermite rule
+      // The mean of T only enters as (c1 - c0)·mean. On x = t/len in [0, 1],
+      // f = T(x) = exp(-D(x)) with D' = g = -kappa·ln w(x); g and g' are known
+      // at both ends, so f, f', f'' are too, and the two-point Hermite rule
       //   ∫f ≈ (f0 + f1)/2 + (f0' - f1')/10 + (f0'' + f1'')/120
       // costs no further exp or log. Its error is f⁽⁶⁾(ξ)/100800, and
       // |f⁽⁶⁾| ≤ Y6(a, b, b·r, 2b·r², 6b·r³, 24b·r⁴) (complete Bell
@@ -113,27 +113,26 @@ SegmentLight integrate_linear_piece(const double c0[3], double a0, double L0, co
       // bounding |g⁽ᵏ⁾| ≤ (k-1)!·b·r^(k-1). Where that bound times |c1 - c0|
       // exceeds 1e-9, Gauss–Legendre on T(t) instead.
       const double g0 = -kappa * L0, g1 = -kappa * L1;
-      const double wmin = std::min(w0, w1), d = w1 - w0;
-      const double A = std::max(g0, g1), r = std::abs(d) / wmin, B = kappa * r;
+      const double inv_w0 = 1.0 / w0, inv_w1 = 1.0 / w1, d = w1 - w0;
+      const double A = std::max(g0, g1), r = std::abs(d) * std::max(inv_w0, inv_w1), B = kappa * r;
       const double A2 = A * A;
       const double y6 = A2 * (A2 * (A2 + 15 * B) + 45 * B * B) + 15 * B * B * B +
                         r * (A * (20 * A2 * B + 60 * B * B) + r * (30 * A2 * B + 40 * B * B + r * (36 * A * B + 24 * B * r)));
       const double dc = std::max({std::abs(c1[0] - c0[0]), std::abs(c1[1] - c0[1]), std::abs(c1[2] - c0[2])});
       if (dc * y6 <= 1e-9 * 100800.0) {
-        const double gp0 = -kappa * d / w0, gp1 = -kappa * d / w1;
-        J = len * (0.5 * (1.0 + T) + (g1 * T - g0) * 0.1 + ((g0 * g0 - gp0) + (g1 * g1 - gp1) * T) * (1.0 / 120));
+        const double gp0 = -kappa * d * inv_w0, gp1 = -kappa * d * inv_w1;
+        Jm = 0.5 * (1.0 + T) + (g1 * T - g0) * 0.1 + ((g0 * g0 - gp0) + (g1 * g1 - gp1) * T) * (1.0 / 120);
       } else {
         const PieceDepth depth{w0, d / len, 1.0 / unit};
         auto trans = [&](double t) { return std::exp(-depth(t)); };
         const double tol = 1e-8 * len;
         const double g8 = gl8(trans, 0.0, len);
-        J = std::abs(g8 - gl4(trans, 0.0, len)) <= tol ? g8 : adaptive_gl(trans, 0.0, len, g8, tol, 20);
+        Jm = (std::abs(g8 - gl4(trans, 0.0, len)) <= tol ? g8 : adaptive_gl(trans, 0.0, len, g8, tol, 20)) / len;
       }
     }
   }
   // I = ∫ c τ T dt = [-c T] + c' ∫ T dt  (integration by parts, c linear).
-  const double J_len = J / len;
-  for (int k = 0; k < 3; ++k) out.rgb[k] = c0[k] - c1[k] * T + (c1[k] - c0[k]) * J_len;
+  for (int k = 0; k < 3; ++k) out.rgb[k] = c0[k] - c1[k] * T + (c1[k] - c0[k]) * Jm;
   out.T = T;
   return out;
 }

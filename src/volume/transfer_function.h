@@ -57,6 +57,7 @@ class TransferFunction {
   std::vector<OpacityPoint> opacity_;
   std::vector<double> bs_;
   std::vector<std::array<double, 4>> at_bs_;  // colour and opacity at each breakpoint
+  std::vector<double> inv_width_;             // 1 / (bs_[k+1] - bs_[k])
   double unit_ = 1.0;
 };
 
