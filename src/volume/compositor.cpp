@@ -13,6 +13,22 @@ void Compositor::composite(PixelRecord& px, FragmentPool& pool, float z_limit, i
     const Fragment f = pool.at(px.head);
     if (!(f.z < z_limit)) break;
     pool.pop_front(px);
+    if (batch_) {
+      // Deferred: the segment needs only its ends (segment_batch.h).
+      if (px.inside > 0 && f.z > px.last_z) {
+        if (batch_->full()) batch_->flush(records_);
+        batch_->push(uint32_t(&px - records_), px.last_s, f.s, double(f.z - px.last_z) * len_factor);
+        ++segments_;
+      }
+      if (f.kind == kEntry) {
+        if (px.inside < INT16_MAX) ++px.inside;
+      } else if (f.kind == kExit) {
+        if (px.inside > 0) --px.inside;
+      }
+      px.last_z = f.z;
+      px.last_s = f.s;
+      continue;
+    }
     const SegmentEnd end = integ_.end(f.s);
     if (px.inside > 0 && f.z > px.last_z) {
       const SegmentLight seg = integ_.integrate(px.last_s, SegmentEnd{px.last_k, px.last_L}, f.s, end,

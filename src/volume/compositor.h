@@ -13,15 +13,23 @@
 
 #include "scene/camera.h"
 #include "volume/pixel_lists.h"
+#include "volume/segment_batch.h"
 #include "volume/segment_integrator.h"
 
 namespace zs {
 
 class Compositor {
  public:
-  // et_transmittance: stop a pixel once its transmittance is below this (0 = never).
-  Compositor(const View& view, const SegmentIntegrator& integ, double et_transmittance)
-      : view_(view), integ_(integ), et_(et_transmittance) {}
+  // et_transmittance: stop a pixel once its transmittance is below this (0 =
+  // never). With a batch (exact integrator, no early termination: nothing
+  // reads a pixel's colour before the tile ends), segments are queued there
+  // and composited into records[pixel] in order when it fills or on flush().
+  Compositor(const View& view, const SegmentIntegrator& integ, double et_transmittance,
+             SegmentBatch* batch = nullptr, PixelRecord* records = nullptr)
+      : view_(view), integ_(integ), et_(et_transmittance), batch_(batch), records_(records) {}
+  void flush() {
+    if (batch_) batch_->flush(records_);
+  }
 
   // Composites the fragments of the pixel at image coordinates (X, Y) with
   // depth < z_limit (all if z_limit is +inf), freeing them.
@@ -34,6 +42,8 @@ class Compositor {
   const View& view_;
   const SegmentIntegrator& integ_;
   double et_;
+  SegmentBatch* batch_;
+  PixelRecord* records_;
   uint64_t segments_ = 0, terminated_ = 0;
 };
 

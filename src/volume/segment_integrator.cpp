@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "volume/light_kernel.h"
+
 namespace zs {
 
 namespace {
@@ -104,24 +106,26 @@ SegmentLight integrate_linear_piece(const double c0[3], double a0, double L0, co
     Jm = 0;
     if (varying_colour) {
       // The mean of T only enters as (c1 - c0)·mean. On x = t/len in [0, 1],
-      // f = T(x) = exp(-D(x)) with D' = g = -kappa·ln w(x); g and g' are known
-      // at both ends, so f, f', f'' are too, and the two-point Hermite rule
-      //   ∫f ≈ (f0 + f1)/2 + (f0' - f1')/10 + (f0'' + f1'')/120
-      // costs no further exp or log. Its error is f⁽⁶⁾(ξ)/100800, and
-      // |f⁽⁶⁾| ≤ Y6(a, b, b·r, 2b·r², 6b·r³, 24b·r⁴) (complete Bell
+      // f = T(x) = exp(-D(x)) with D' = g = -kappa·ln w(x); g, g', g'' are
+      // known at both ends, so f to f''' are too, and the two-point Hermite
+      // rule (exact for degree 7)
+      //   ∫f ≈ (f0 + f1)/2 + 3(f0' - f1')/28 + (f0'' + f1'')/84 + (f0''' - f1''')/1680
+      // costs no further exp or log. Its error is f⁽⁸⁾(ξ)/25401600, and
+      // |f⁽⁸⁾| ≤ Y8(a, b, b·r, 2b·r², ..., 720b·r⁶) (complete Bell
       // polynomial, f ≤ 1) with a = max g, r = |dw|/min w, b = kappa·r
       // bounding |g⁽ᵏ⁾| ≤ (k-1)!·b·r^(k-1). Where that bound times |c1 - c0|
-      // exceeds 1e-9, Gauss–Legendre on T(t) instead.
+      // exceeds 1e-9, Gauss–Legendre on T(t) instead. (light_kernel.h is
+      // the same rule, four pieces at a time.)
       const double g0 = -kappa * L0, g1 = -kappa * L1;
       const double inv_w0 = 1.0 / w0, inv_w1 = 1.0 / w1, d = w1 - w0;
       const double A = std::max(g0, g1), r = std::abs(d) * std::max(inv_w0, inv_w1), B = kappa * r;
-      const double A2 = A * A;
-      const double y6 = A2 * (A2 * (A2 + 15 * B) + 45 * B * B) + 15 * B * B * B +
-                        r * (A * (20 * A2 * B + 60 * B * B) + r * (30 * A2 * B + 40 * B * B + r * (36 * A * B + 24 * B * r)));
       const double dc = std::max({std::abs(c1[0] - c0[0]), std::abs(c1[1] - c0[1]), std::abs(c1[2] - c0[2])});
-      if (dc * y6 <= 1e-9 * 100800.0) {
-        const double gp0 = -kappa * d * inv_w0, gp1 = -kappa * d * inv_w1;
-        Jm = 0.5 * (1.0 + T) + (g1 * T - g0) * 0.1 + ((g0 * g0 - gp0) + (g1 * g1 - gp1) * T) * (1.0 / 120);
+      using light::Lane1;
+      if (dc * light::hermite8_bound(Lane1(A), Lane1(B), Lane1(r)).v <= light::kHermite8Tolerance) {
+        const double h0 = d * inv_w0, h1 = d * inv_w1;  // dw/w: g' = -kappa·h, g'' = kappa·h²
+        Jm = light::hermite8_mean(Lane1(g0), Lane1(g1), Lane1(kappa * h0), Lane1(kappa * h1), Lane1(kappa * h0 * h0),
+                                  Lane1(kappa * h1 * h1), Lane1(T))
+                 .v;
       } else {
         const PieceDepth depth{w0, d / len, 1.0 / unit};
         auto trans = [&](double t) { return std::exp(-depth(t)); };

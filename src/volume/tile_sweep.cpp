@@ -32,13 +32,23 @@ class TileSweep {
  public:
   TileSweep(const SweepShared& in, const Viewport& vp, uint64_t max_fragments, TileWorkspace& ws, RenderStats& S)
       : in_(in), rs_(in.rs), vp_(vp), vw_(uint32_t(vp.x1 - vp.x0)), ws_(ws), S_(S),
-        comp_(in.view, in.integ, rs_.early_termination > 0 ? rs_.early_termination / 510.0 : 0.0),
+        comp_(in.view, in.integ, rs_.early_termination > 0 ? rs_.early_termination / 510.0 : 0.0,
+              batch_for(in, ws), prepare(ws, size_t(vw_) * uint32_t(vp.y1 - vp.y0))),
         timed_(rs_.phase_times) {
-    const size_t npix = size_t(vw_) * uint32_t(vp.y1 - vp.y0);
-    ws.px.resize(npix);
-    for (PixelRecord& p : ws.px) p.reset();
     ws.active.clear();
     ws.pool.reset(max_fragments);
+  }
+
+  // Exact integration without early termination is deferred and batched.
+  static SegmentBatch* batch_for(const SweepShared& in, TileWorkspace& ws) {
+    if (in.rs.integrator != Integrator::Exact || in.rs.early_termination > 0) return nullptr;
+    if (!ws.batch) ws.batch = std::make_unique<SegmentBatch>(in.integ, in.rs.tf);
+    return ws.batch.get();
+  }
+  static PixelRecord* prepare(TileWorkspace& ws, size_t npix) {
+    ws.px.resize(npix);
+    for (PixelRecord& p : ws.px) p.reset();
+    return ws.px.data();
   }
 
   void run(uint32_t tile) {
@@ -64,6 +74,7 @@ class TileSweep {
       project(tri, (id & kNearItem) ? in_.near[id & ~kNearItem].cls : in_.cls[id], z_sweep);
     }
     composite_all(INFINITY);
+    comp_.flush();
     S_.segments += comp_.segments();
     S_.early_terminated_pixels += comp_.terminated_pixels();
     S_.peak_fragments = std::max<uint64_t>(S_.peak_fragments, ws_.pool.peak_fragments());

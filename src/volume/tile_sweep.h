@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "raster/bconvert_scan.h"
@@ -16,6 +17,7 @@
 #include "volume/near_clip.h"
 #include "volume/pixel_lists.h"
 #include "volume/render_settings.h"
+#include "volume/segment_batch.h"
 #include "volume/segment_integrator.h"
 #include "volume/sweep_order.h"
 #include "volume/tile_bins.h"
@@ -46,6 +48,7 @@ struct TileWorkspace {
   FaceFragments frags;
   BConvertScratch bscratch;
   std::vector<float> out;  // the finished tile, RGBA
+  std::unique_ptr<SegmentBatch> batch;  // exact integrator without early termination
 };
 
 // Sweeps tile `vp` (bin `tile`); leaves its premultiplied RGBA over the

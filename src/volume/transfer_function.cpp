@@ -69,14 +69,6 @@ TransferFunction::TransferFunction(std::vector<ColorPoint> color, std::vector<Op
   for (size_t k = 0; k + 1 < bs_.size(); ++k) inv_width_.push_back(1.0 / (bs_[k + 1] - bs_[k]));
 }
 
-std::array<double, 4> TransferFunction::rgba_in(int k, double s) const {
-  if (k < 0) return at_bs_.front();
-  if (size_t(k) + 1 >= bs_.size()) return at_bs_.back();
-  const double t = (s - bs_[size_t(k)]) * inv_width_[size_t(k)];
-  const auto &a = at_bs_[size_t(k)], &b = at_bs_[size_t(k) + 1];
-  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]), a[3] + t * (b[3] - a[3])};
-}
-
 std::array<double, 4> TransferFunction::rgba(double s) const { return rgba_in(interval(s), s); }
 
 std::array<double, 3> TransferFunction::color(double s) const {
@@ -100,8 +92,5 @@ double TransferFunction::max_opacity(double lo, double hi) const {
   return m;
 }
 
-int TransferFunction::interval(double s) const {
-  return int(std::upper_bound(bs_.begin(), bs_.end(), s) - bs_.begin()) - 1;
-}
 
 }  // namespace zs

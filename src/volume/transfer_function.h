@@ -4,6 +4,7 @@
 // colour and opacity are both linear.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -60,5 +61,27 @@ class TransferFunction {
   std::vector<double> inv_width_;             // 1 / (bs_[k+1] - bs_[k])
   double unit_ = 1.0;
 };
+
+// Inline: both run once or twice per segment.
+inline std::array<double, 4> TransferFunction::rgba_in(int k, double s) const {
+  if (k < 0) return at_bs_.front();
+  if (size_t(k) + 1 >= bs_.size()) return at_bs_.back();
+  const double t = (s - bs_[size_t(k)]) * inv_width_[size_t(k)];
+  const auto &a = at_bs_[size_t(k)], &b = at_bs_[size_t(k) + 1];
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]), a[3] + t * (b[3] - a[3])};
+}
+
+inline int TransferFunction::interval(double s) const {
+  // Transfer functions are short: a linear scan beats a binary search below
+  // a few dozen points.
+  const size_t n = bs_.size();
+  if (n <= 16) {
+    if (s != s) return int(n) - 1;  // NaN, as upper_bound would place it
+    int k = -1;
+    while (size_t(k + 1) < n && bs_[size_t(k + 1)] <= s) ++k;
+    return k;
+  }
+  return int(std::upper_bound(bs_.begin(), bs_.end(), s) - bs_.begin()) - 1;
+}
 
 }  // namespace zs

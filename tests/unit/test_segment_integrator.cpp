@@ -2,11 +2,14 @@
 // its defining integrals, over thin, thick, steep and nearly constant pieces:
 // the Hermite rule's certified bound and the Gauss–Legendre fallback must
 // both hold the colour to ~1e-9 and the transmittance to rounding.
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "volume/light_kernel.h"
 #include "volume/segment_integrator.h"
 
 namespace zs {
@@ -70,6 +73,66 @@ TEST(SegmentIntegrator, LinearPieceMatchesBruteForce) {
   std::printf("%d pieces: max colour error %.2e, max transmittance error %.2e\n", cases, worst_rgb, worst_T);
   EXPECT_LE(worst_rgb, 2e-9);
   EXPECT_LE(worst_T, 1e-11);
+}
+
+// The batch kernel (light_kernel.h): the AVX2 and the one-lane build give
+// the same bits, and both agree with the scalar kernel within its bound.
+TEST(SegmentIntegrator, BatchKernelMatchesScalarBitForBit) {
+  const size_t n = 4000;
+  std::vector<double> buf(n * 14);
+  std::vector<uint8_t> ok1(n), ok4(n);
+  auto arrays = [&](double* base, uint8_t* ok) {
+    light::PieceArrays a;
+    double* b = base;
+    auto next = [&] { double* r = b; b += n; return r; };
+    for (int k = 0; k < 3; ++k) a.c0[k] = next();
+    a.a0 = next();
+    for (int k = 0; k < 3; ++k) a.c1[k] = next();
+    a.a1 = next();
+    a.len = next();
+    for (int k = 0; k < 3; ++k) a.rgb[k] = next();
+    a.T = next();
+    a.ok = ok;
+    return a;
+  };
+  light::PieceArrays A = arrays(buf.data(), ok1.data());
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u01(0, 1);
+  for (size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) A.c0[k][i] = u01(rng), A.c1[k][i] = A.c0[k][i] + 0.01 * (u01(rng) - 0.5);
+    const double a = u01(rng) * (1 - 1e-6);
+    A.a0[i] = a;
+    A.a1[i] = i % 7 == 0 ? a : std::clamp(a + 0.05 * (u01(rng) - 0.5), 0.0, 1 - 1e-6);
+    A.len[i] = i % 5 == 0 ? 0.0 : std::pow(10.0, -4 + 4 * u01(rng));
+  }
+  std::vector<double> buf4 = buf;
+  light::PieceArrays B = arrays(buf4.data(), ok4.data());
+  const double inv_unit = 1 / 0.7;
+  light::piece_lights_scalar(A, n, inv_unit);
+  if (light::have_avx2()) {
+    light::piece_lights_avx2(B, n, inv_unit);
+    for (size_t i = 0; i < n; ++i) {
+      ASSERT_EQ(A.T[i], B.T[i]) << i;
+      ASSERT_EQ(ok1[i], ok4[i]) << i;
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(A.rgb[k][i], B.rgb[k][i]) << i;
+    }
+  } else {
+    std::printf("no AVX2 on this CPU: only the one-lane kernel is checked\n");
+  }
+  double worst = 0;
+  size_t accepted = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!ok1[i]) continue;
+    ++accepted;
+    const double c0[3] = {A.c0[0][i], A.c0[1][i], A.c0[2][i]}, c1[3] = {A.c1[0][i], A.c1[1][i], A.c1[2][i]};
+    const SegmentLight l = integrate_linear_piece(c0, A.a0[i], c1, A.a1[i], A.len[i], 0.7);
+    worst = std::max(worst, std::abs(l.T - A.T[i]));
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(l.rgb[k] - A.rgb[k][i]));
+  }
+  std::printf("%zu of %zu pieces taken by the Hermite rule; max difference from the scalar kernel %.2e\n",
+              accepted, n, worst);
+  EXPECT_GT(accepted, n / 2);
+  EXPECT_LE(worst, 2e-9);
 }
 
 }  // namespace
