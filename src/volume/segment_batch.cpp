@@ -1,5 +1,7 @@
 #include "volume/segment_batch.h"
 
+#include <array>
+
 namespace zs {
 
 namespace light {
@@ -51,14 +53,32 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
 void SegmentBatch::flush(PixelRecord* px) {
   if (n_ == 0) return;
   const light::PieceArrays& A = arrays_;
-  // Colour and opacity at both ends: one piece when both lie in one interval.
+  // Colour and opacity at both ends: one piece when both lie in one interval
+  // (rgba_in's arithmetic, on the raw tables).
+  const double* bs = tf_.breakpoints().data();
+  const int nb = int(tf_.breakpoints().size());
+  const std::array<double, 4>* at = &tf_.rgba_at_breakpoint(0);
+  const double* inv_w = tf_.inverse_widths();
   for (size_t i = 0; i < n_; ++i) {
-    const int k0 = tf_.interval(s0_[i]), k1 = tf_.interval(s1_[i]);
+    const double s0 = s0_[i], s1 = s1_[i];
+    const int k0 = tf_.interval(s0), k1 = tf_.interval(s1);
     split_[i] = k0 != k1;
-    const auto a = tf_.rgba_in(k0, s0_[i]), b = tf_.rgba_in(k0, s1_[i]);
-    for (int k = 0; k < 3; ++k) A.c0[k][i] = a[size_t(k)], A.c1[k][i] = b[size_t(k)];
-    A.a0[i] = split_[i] ? 0.0 : a[3];
-    A.a1[i] = split_[i] ? 0.0 : b[3];
+    if (k0 < 0 || k0 + 1 >= nb) {  // clamped: constant outside the points
+      const std::array<double, 4>& c = at[k0 < 0 ? 0 : nb - 1];
+      for (int k = 0; k < 3; ++k) A.c0[k][i] = A.c1[k][i] = c[size_t(k)];
+      A.a0[i] = A.a1[i] = c[3];
+    } else {
+      const std::array<double, 4>&lo = at[k0], &hi = at[k0 + 1];
+      const double t0 = (s0 - bs[k0]) * inv_w[k0], t1 = (s1 - bs[k0]) * inv_w[k0];
+      for (int k = 0; k < 3; ++k) {
+        const double dv = hi[size_t(k)] - lo[size_t(k)];
+        A.c0[k][i] = lo[size_t(k)] + t0 * dv;
+        A.c1[k][i] = lo[size_t(k)] + t1 * dv;
+      }
+      const double da = hi[3] - lo[3];
+      A.a0[i] = lo[3] + t0 * da;
+      A.a1[i] = lo[3] + t1 * da;
+    }
     A.len[i] = len_[i];
   }
   // Pad to a multiple of 4 with empty pieces.

@@ -47,6 +47,8 @@ class TransferFunction {
   double extinction(double s) const;
   // Largest opacity over [lo, hi]; 0 means everything in the range is invisible.
   double max_opacity(double lo, double hi) const;
+  // 1 / (breakpoints[k+1] - breakpoints[k]), one per interval (batch kernels).
+  const double* inverse_widths() const { return inv_width_.data(); }
   // Index k with breakpoints[k] <= s < breakpoints[k+1]; -1 below the first.
   int interval(double s) const;
 
