@@ -74,13 +74,14 @@ inline std::array<double, 4> TransferFunction::rgba_in(int k, double s) const {
 }
 
 inline int TransferFunction::interval(double s) const {
-  // Transfer functions are short: a linear scan beats a binary search below
-  // a few dozen points.
+  // Transfer functions are short: counting the points at or below s beats a
+  // binary search below a few dozen points, and has no branch that depends on
+  // s (the scalars of consecutive segments are unrelated: mispredictions).
   const size_t n = bs_.size();
   if (n <= 16) {
     if (s != s) return int(n) - 1;  // NaN, as upper_bound would place it
     int k = -1;
-    while (size_t(k + 1) < n && bs_[size_t(k + 1)] <= s) ++k;
+    for (size_t j = 0; j < n; ++j) k += bs_[j] <= s;
     return k;
   }
   return int(std::upper_bound(bs_.begin(), bs_.end(), s) - bs_.begin()) - 1;
