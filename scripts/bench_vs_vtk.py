@@ -48,7 +48,7 @@ def mesh_args(name):
     return args
 
 
-def scene_for(info, vtu, size):
+def scene_for(info, vtu, size, scan):
     lo, hi = info["bounds"]
     c = [(a + b) / 2 for a, b in zip(lo, hi)]
     r = 0.5 * math.dist(lo, hi)
@@ -64,19 +64,27 @@ def scene_for(info, vtu, size):
             "opacity": [[smin, 0.0], [smax, 0.6]],
             "unit_distance": 2 * r / 50,
         },
-        "render": {"scan": "bbox", "integrator": "exact"},
+        "render": {"scan": scan, "integrator": "exact"},
     }
 
 
-def time_zsweep(scene_path, out_png, repeat):
+def time_zsweep(scene_path, out_exr, repeat):
     best = None
     for _ in range(repeat):
-        stats = out_png + ".stats.json"
-        run([ZSWEEP, "render", scene_path, "-o", out_png, "--threads", "1", "--stats", stats])
+        stats = out_exr + ".stats.json"
+        run([ZSWEEP, "render", scene_path, "-o", out_exr, "--threads", "1", "--stats", stats])
         with open(stats) as f:
             t = json.load(f)["time_ms"]["total"] / 1000.0
         best = t if best is None else min(best, t)
     return best
+
+
+def check_against_reference(scene_path, out_exr):
+    """Max abs difference of our image from our reference ray caster."""
+    ref = out_exr.replace(".exr", "-reference.exr")
+    run([ZSWEEP, "reference", scene_path, "-o", ref])
+    c = json.loads(run([ZSWEEP, "compare", out_exr, ref, "--json"]).stdout)
+    return c["max_abs"]
 
 
 def time_vtk(vtu, scene, mapper_kind, repeat, out_png):
@@ -154,6 +162,10 @@ def main():
     ap.add_argument("--sizes", default="512,1024")
     ap.add_argument("--meshes", default="spx,blunt,post")
     ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--scan", default="span", help="zsweep's scan strategy (bbox, span, bconvert)")
+    ap.add_argument("--mappers", default="zsweep,raycast",
+                    help="VTK mappers to time: zsweep (vtkUnstructuredGridVolumeZSweepMapper), "
+                         "raycast (vtkUnstructuredGridVolumeRayCastMapper)")
     ap.add_argument("--csv", default=os.path.join(ROOT, "docs", "benchmarks.csv"))
     ap.add_argument("--images", default=os.path.join(ROOT, "build", "bench-vs-vtk"))
     ap.add_argument("--no-doc", action="store_true", help="do not update docs/benchmarks.md")
@@ -166,19 +178,24 @@ def main():
         run([ZSWEEP, "mesh", "convert"] + mesh_args(name) + [vtu])
         info = json.loads(run([ZSWEEP, "mesh", "info", vtu, "--json"]).stdout)
         for size in [int(s) for s in a.sizes.split(",")]:
-            scene = scene_for(info, vtu, size)
+            scene = scene_for(info, vtu, size, a.scan)
             scene_path = os.path.join(work, f"{name}-{size}.json")
             with open(scene_path, "w") as f:
                 json.dump(scene, f)
             base = os.path.join(a.images, f"{name}-{size}")
-            ours = time_zsweep(scene_path, base + "-zsweep.png", a.repeat)
-            vz = time_vtk(vtu, scene, "zsweep", a.repeat, base + "-vtk-zsweep.png")
-            vr = time_vtk(vtu, scene, "raycast", a.repeat, base + "-vtk-raycast.png")
+            ours = time_zsweep(scene_path, base + "-zsweep.exr", a.repeat)
+            err = check_against_reference(scene_path, base + "-zsweep.exr")
+            mappers = a.mappers.split(",")
+            nan = float("nan")
+            vz = time_vtk(vtu, scene, "zsweep", a.repeat, base + "-vtk-zsweep.png") if "zsweep" in mappers else nan
+            vr = time_vtk(vtu, scene, "raycast", a.repeat, base + "-vtk-raycast.png") if "raycast" in mappers else nan
             row = {"mesh": name, "tets": info["tets"], "size": size, "zsweep_s": ours,
                    "vtk_zsweep_s": vz, "vtk_raycast_s": vr,
-                   "speedup_vs_vtk_zsweep": vz / ours, "speedup_vs_vtk_raycast": vr / ours}
+                   "speedup_vs_vtk_zsweep": vz / ours, "speedup_vs_vtk_raycast": vr / ours,
+                   "max_abs_vs_reference": err}
             rows.append(row)
-            print(f"{name:6s} {size:5d}²  zsweep {ours:7.3f} s   VTK ZSweep {vz:7.3f} s ({vz / ours:5.1f}x)   "
+            print(f"{name:6s} {size:5d}²  zsweep {ours:7.3f} s (max abs vs reference {err:.2g})   "
+                  f"VTK ZSweep {vz:7.3f} s ({vz / ours:5.1f}x)   "
                   f"VTK ray cast {vr:7.3f} s ({vr / ours:5.2f}x)", flush=True)
     with open(a.csv, "w", newline="") as f:
         wr = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
@@ -193,15 +210,26 @@ def update_doc(rows, a):
     lines = [
         "<!-- bench-vs-vtk:begin (written by scripts/bench-vs-vtk; do not edit by hand) -->",
         f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores), one thread, "
+        f"`exact` integrator, `{a.scan}` scan, "
         f"`scripts/bench-vs-vtk --sizes {a.sizes} --meshes {a.meshes} --repeat {a.repeat}` "
-        f"(best of {a.repeat} steady-state frames each).",
+        f"(best of {a.repeat} steady-state frames each). Targets: ≥ 25× VTK's ZSweep mapper, ≥ 3× VTK's "
+        f"ray caster, image within 1/255 of our reference.",
         "",
-        "| mesh | tets | size | zsweep (s) | VTK ZSweep (s) | ratio | VTK ray cast (s) | ratio |",
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |",
+        "| mesh | tets | size | zsweep (s) | vs reference | VTK ZSweep (s) | ratio | ≥ 25× | VTK ray cast (s) | ratio | ≥ 3× |",
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | :---: | ---: | ---: | :---: |",
     ]
+    def mark(ratio, target):
+        return "–" if ratio != ratio else ("yes" if ratio >= target else "**no**")
+    def sec(t):
+        return "–" if t != t else f"{t:.3f}"
+    def ratio(x, digits):
+        return "–" if x != x else f"{x:.{digits}f}×"
     for r in rows:
-        lines.append(f"| {r['mesh']} | {r['tets']:,} | {r['size']}² | {r['zsweep_s']:.3f} | {r['vtk_zsweep_s']:.3f} | "
-                     f"{r['speedup_vs_vtk_zsweep']:.1f}× | {r['vtk_raycast_s']:.3f} | {r['speedup_vs_vtk_raycast']:.2f}× |")
+        lines.append(f"| {r['mesh']} | {r['tets']:,} | {r['size']}² | {r['zsweep_s']:.3f} | "
+                     f"{r['max_abs_vs_reference']:.1e} | {sec(r['vtk_zsweep_s'])} | "
+                     f"{ratio(r['speedup_vs_vtk_zsweep'], 1)} | {mark(r['speedup_vs_vtk_zsweep'], 25)} | "
+                     f"{sec(r['vtk_raycast_s'])} | {ratio(r['speedup_vs_vtk_raycast'], 2)} | "
+                     f"{mark(r['speedup_vs_vtk_raycast'], 3)} |")
     lines.append("<!-- bench-vs-vtk:end -->")
     block = "\n".join(lines)
     text = open(path).read() if os.path.exists(path) else "# Benchmarks\n\n"

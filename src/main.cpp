@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "mpi/mpi_env.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"zsweep: direct volume rendering of tetrahedral meshes (ZSweep lineage)"};
@@ -26,6 +27,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {
+    // Under `render --mpi` the ranks settle a failure together (src/mpi/mpi_env.h).
+    if (zs::mpi_active()) return zs::mpi_exit_on_error(e);
     // Readers and writers already name the file (and line); one line, no trace.
     std::cerr << "zsweep: error: " << e.what() << "\n";
     return 1;

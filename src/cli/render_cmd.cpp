@@ -10,8 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/render_mpi.h"
 #include "cli/scene_args.h"
-#include "image/image.h"
+#include "image/tile_writer.h"
 #include "mesh/topology.h"
 #include "scene/scene.h"
 #include "util/atomic_file.h"
@@ -62,6 +63,8 @@ void write_stats(const std::string& path, const RenderStats& S, const Scene& sce
       {"row_end_misses", {S.row_end_misses[0], S.row_end_misses[1], S.row_end_misses[2], S.row_end_misses[3]}},
       {"face_to_bbox_area_ratio", S.bbox_area > 0 ? S.face_area / S.bbox_area : 0.0},
       {"integrator", to_string(scene.settings.integrator)},
+      {"tiles", S.tiles},
+      {"tile_size", S.tile_size},
   };
   AtomicFile out(path);
   {
@@ -80,9 +83,35 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
   const auto t1 = Clock::now();
   const Topology topo = build_topology(in.mesh);
   const auto t2 = Clock::now();
-  RenderStats stats;
-  const Image img = render_zsweep(in.mesh, topo, rs, &stats);
-  write_image(out_path, img);
+  // ---- MPI: `render --mpi` (src/cli/render_mpi.h). Every rank sweeps a share
+  // of the tiles into rank 0's writer; rank 0 alone writes and prints. ----
+  if (render_mpi_enabled()) {
+    std::unique_ptr<ImageTileWriter> w;
+    if (render_mpi_rank() == 0)
+      w = std::make_unique<ImageTileWriter>(out_path, TileGrid{rs.width, rs.height, rs.tile_size});
+    RenderStats st;
+    render_mpi(in.mesh, topo, rs, w.get(), w ? w->buffer_bytes_estimate() : 0, &st);
+    if (!w) return;
+    w->commit();
+    if (!stats_path.empty())
+      write_stats(stats_path, st, in.scene, in.mesh, in.ms_load,
+                  std::chrono::duration<double, std::milli>(t2 - t1).count());
+    std::printf("wrote %s: %ux%u, %llu fragments, %llu rendered pixels, %.1f ms\n", out_path.c_str(), rs.width,
+                rs.height, (unsigned long long)st.fragments, (unsigned long long)st.rendered_pixels, st.ms_total);
+    return;
+  }
+  // ---- end MPI ----
+  // Tiles stream from the engine into the file as they finish, so no
+  // format needs the whole image in memory (EXR/TIFF tiled, PNG in row
+  // bands) and stills larger than memory work. The writer opens first, so an
+  // unwritable path fails before the render, and its buffers count against
+  // the budget; nothing appears under out_path unless commit() succeeds.
+  ImageTileWriter writer(out_path, TileGrid{rs.width, rs.height, rs.tile_size});
+  ZSweepRenderer renderer(in.mesh, topo, rs, writer.buffer_bytes_estimate());
+  RenderStats stats = renderer.setup_stats();
+  stats.ms_total = stats.ms_setup;
+  renderer.render_tiles(writer, nullptr, &stats);
+  writer.commit();
   if (!stats_path.empty())
     write_stats(stats_path, stats, in.scene, in.mesh, in.ms_load,
                 std::chrono::duration<double, std::milli>(t2 - t1).count());
@@ -100,6 +129,7 @@ void add_render_command(CLI::App& app) {
   a->add_options(*cmd, true);
   cmd->add_option("-o,--output", *out, "Output image: .png (8-bit), .exr or .tif (float)")->required();
   cmd->add_option("--stats", *stats, "Write render statistics as JSON");
+  add_render_mpi_options(*cmd);  // --mpi, --mpi-schedule (src/cli/render_mpi.h)
   cmd->callback([a, out, stats] { run(*a, *out, *stats); });
 }
 

@@ -24,6 +24,8 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
   cmd.add_option("--memory-budget", memory_budget_mb, "Memory budget in MiB (default: half of physical memory)");
   cmd.add_option("--early-termination", early_termination, "Stop a pixel below t/510 transmittance (t in 8-bit levels)");
   cmd.add_option("--max-list-length", max_list_length, "Force compositing when a pixel list grows past this");
+  cmd.add_option("--tile-size", tile_size, "Screen tile size in pixels (default 64); the image does not depend on it")
+      ->check(CLI::Range(8u, 4096u));
 }
 
 SceneInput SceneArgs::load() const {
@@ -49,6 +51,7 @@ SceneInput SceneArgs::load() const {
   if (memory_budget_mb > 0) rs.memory_budget_bytes = uint64_t(memory_budget_mb * 1048576.0);
   if (early_termination >= 0) rs.early_termination = early_termination;
   if (max_list_length >= 0) rs.max_list_length = uint32_t(max_list_length);
+  if (tile_size) rs.tile_size = tile_size;
   rs.threads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
   rs.progress = true;
   finish_scene(in, p);

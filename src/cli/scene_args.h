@@ -25,6 +25,7 @@ struct SceneArgs {
   double memory_budget_mb = 0;
   double early_termination = -1;
   int64_t max_list_length = -1;
+  uint32_t tile_size = 0;  // 0 = the engine's default
 
   void add_options(CLI::App& cmd, bool engine_knobs);
   // Loads the input and applies every override; camera and TF are complete.

@@ -110,6 +110,9 @@ struct ZSweepRenderer::Impl {
   TileGrid grid;
   RenderPlan plan;
   RenderStats setup;
+  // Per-thread scratch (records, pool, batch), kept across render_tiles
+  // calls: MPI ranks call it once per run of tiles.
+  tbb::enumerable_thread_specific<TileWorkspace> spaces;
 
   Impl(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings, uint64_t sink_bytes)
       : rs(settings), view(settings.camera, settings.width, settings.height), integ(settings.tf, settings.integrator),
@@ -206,7 +209,7 @@ void ZSweepRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* t
   uint64_t work = 0;
   for (uint32_t t : *tiles) work += I.in.bins.offset[t + 1] - I.in.bins.offset[t] + 1;
   Progress progress("render", work, I.rs.progress);
-  tbb::enumerable_thread_specific<TileWorkspace> spaces;
+  auto& spaces = I.spaces;
   tbb::enumerable_thread_specific<RenderStats> tile_stats;
   std::mutex sink_mu;
   auto run = [&](size_t k) {

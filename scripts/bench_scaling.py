@@ -1,0 +1,121 @@
+"""Thread scaling and peak memory of `zsweep render` at large sizes.
+
+Run through scripts/bench-scaling. For every mesh, size and thread count it
+renders once (one process per run, so peak RSS is that render's), to a
+streamed EXR in a scratch directory that is deleted afterwards, and reads
+time_ms.total and peak_rss_bytes from --stats. Speedups are within one run
+of this script, thread count against one thread, same mesh and size.
+Writes a CSV and the table between the bench-scaling markers of
+docs/benchmarks.md.
+"""
+import argparse
+import csv
+import datetime
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
+SHARED = os.environ.get("ZSWEEP_SHARED", os.path.join(ROOT, "..", "shared", "datasets"))
+
+MESHES = {
+    "spx": ["spx.off"],
+    "blunt": ["bluntfinxyz.bin", "--q", "bluntfinq.bin", "--scalar", "density"],
+    "post": ["postxyz.bin", "--q", "postq.bin", "--scalar", "velocity-magnitude"],
+}
+
+
+def mesh_args(name):
+    args = list(MESHES[name])
+    args[0] = os.path.join(SHARED, args[0])
+    if "--q" in args:
+        i = args.index("--q") + 1
+        args[i] = os.path.join(SHARED, args[i])
+    return args
+
+
+def cpu_name():
+    with open("/proc/cpuinfo") as f:
+        for line in f:
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    return "unknown CPU"
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--meshes", default="spx,blunt,post")
+    ap.add_argument("--sizes", default="2048,8192,16384")
+    ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--scan", default="span")
+    ap.add_argument("--csv", default=os.path.join(ROOT, "docs", "bench", "scaling.csv"))
+    ap.add_argument("--no-doc", action="store_true", help="do not update docs/benchmarks.md")
+    a = ap.parse_args()
+    work = tempfile.mkdtemp(prefix="zsweep-scaling-")
+    rows = []
+    try:
+        for name in a.meshes.split(","):
+            for size in [int(s) for s in a.sizes.split(",")]:
+                base = None
+                for t in [int(s) for s in a.threads.split(",")]:
+                    out = os.path.join(work, f"{name}-{size}-{t}.exr")
+                    stats = out + ".json"
+                    subprocess.run([ZSWEEP, "render"] + mesh_args(name) +
+                                   ["--width", str(size), "--height", str(size), "--threads", str(t),
+                                    "--scan", a.scan, "-o", out, "--stats", stats],
+                                   check=True, capture_output=True, text=True)
+                    st = json.load(open(stats))
+                    os.remove(out)
+                    secs = st["time_ms"]["total"] / 1000
+                    base = base or secs
+                    row = {"mesh": name, "tets": st["mesh"]["tets"], "size": size, "threads": t,
+                           "render_s": secs, "speedup": base / secs, "fragments": st["fragments"],
+                           "peak_rss_mib": st["peak_rss_bytes"] / 2**20,
+                           "budget_mib": st["memory_budget_bytes"] / 2**20, "tiles": st.get("tiles", 0)}
+                    rows.append(row)
+                    print(f"{name:6s} {size:6d}² {t} thread(s): {secs:8.2f} s ({row['speedup']:.2f}x), "
+                          f"peak RSS {row['peak_rss_mib']:.0f} MiB, {st['fragments']:,} fragments", flush=True)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(os.path.dirname(a.csv), exist_ok=True)
+    with open(a.csv, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    if not a.no_doc:
+        update_doc(rows, a)
+
+
+def update_doc(rows, a):
+    path = os.path.join(ROOT, "docs", "benchmarks.md")
+    lines = [
+        "<!-- bench-scaling:begin (written by scripts/bench-scaling; do not edit by hand) -->",
+        f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores), "
+        f"`exact` integrator, `{a.scan}` scan, streamed EXR output, default memory budget (half of RAM), "
+        f"`scripts/bench-scaling --meshes {a.meshes} --sizes {a.sizes} --threads {a.threads}`. "
+        "Speedup: against one thread in the same run.",
+        "",
+        "| mesh | tets | size | threads | render (s) | speedup | fragments | peak RSS (MiB) |",
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |",
+    ]
+    for r in rows:
+        lines.append(f"| {r['mesh']} | {r['tets']:,} | {r['size']}² | {r['threads']} | {r['render_s']:.2f} | "
+                     f"{r['speedup']:.2f}× | {r['fragments']:,} | {r['peak_rss_mib']:.0f} |")
+    lines.append("<!-- bench-scaling:end -->")
+    block = "\n".join(lines)
+    text = open(path).read()
+    b, e = "<!-- bench-scaling:begin", "<!-- bench-scaling:end -->"
+    if b in text and e in text:
+        text = text[:text.index(b)] + block + text[text.index(e) + len(e):]
+    else:
+        text = text.rstrip() + "\n\n## Thread scaling and peak memory\n\n" + block + "\n"
+    with open(path, "w") as f:
+        f.write(text)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,309 @@
+#include "image/tile_writer.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <OpenImageIO/filesystem.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+#include "util/atomic_file.h"
+
+namespace zs {
+
+namespace {
+
+// OIIO may queue several messages; the CLI prints one line.
+std::string one_line(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s.empty() ? std::string("unknown error") : s;
+}
+
+// Exactly write_image()'s quantization (image_io.cpp): premultiplied values
+// as they are, no gamma, round half up. The tests hold the two byte-equal.
+inline uint8_t quantize(float v) { return uint8_t(std::clamp(v, 0.f, 1.f) * 255.f + 0.5f); }
+
+// Above this a classic TIFF's 32-bit offsets may overflow (compression
+// cannot be counted on), so the file is written as BigTIFF.
+constexpr uint64_t kBigTiffBytes = uint64_t(2) << 30;
+
+// The file under a sequential (PNG) writer. OIIO's PNG writer ignores
+// failed writes, so this remembers them; and an abandoned image is finished
+// into the void (discard) so that nothing but the temporary is lost.
+class CheckedFile : public OIIO::Filesystem::IOProxy {
+ public:
+  explicit CheckedFile(const std::string& path) : IOProxy(path, Write), f_(std::fopen(path.c_str(), "wb")) {
+    if (!f_) {
+      m_mode = Closed;
+      errno_ = errno;
+    }
+  }
+  ~CheckedFile() override {
+    if (f_) std::fclose(f_);
+  }
+  const char* proxytype() const override { return "zsweep-checked-file"; }
+  size_t write(const void* buf, size_t n) override {
+    ++writes_;
+    if (discard_) return n;
+    const size_t w = f_ ? std::fwrite(buf, 1, n, f_) : 0;
+    if (w != n) note_error();
+    m_pos += int64_t(w);
+    size_ = std::max(size_, uint64_t(m_pos));
+    return w;
+  }
+  size_t pwrite(const void* buf, size_t n, int64_t offset) override {
+    const int64_t at = m_pos;
+    if (!seek(offset)) return 0;
+    const size_t w = write(buf, n);
+    seek(at);
+    return w;
+  }
+  bool seek(int64_t offset) override {
+    if (!discard_ && (!f_ || fseeko(f_, offset, SEEK_SET) != 0)) {
+      note_error();
+      return false;
+    }
+    m_pos = offset;
+    return true;
+  }
+  size_t size() const override { return size_; }
+  void flush() const override {
+    if (f_ && !discard_) std::fflush(f_);
+  }
+  void discard() { discard_ = true; }
+  uint64_t writes() const { return writes_; }
+  bool failed() const { return errno_ != 0; }
+  // Flushes and closes; the first error as text, empty when all went well.
+  std::string finish() {
+    if (f_ && !discard_ && (std::fflush(f_) != 0 || std::ferror(f_))) note_error();
+    if (f_ && std::fclose(f_) != 0) note_error();
+    f_ = nullptr;
+    m_mode = Closed;
+    return errno_ ? std::string(std::strerror(errno_)) : std::string();
+  }
+  int open_error() const { return f_ ? 0 : errno_; }
+
+ private:
+  void note_error() {
+    if (!errno_) errno_ = errno ? errno : EIO;
+  }
+  FILE* f_;
+  int errno_ = 0;
+  uint64_t writes_ = 0, size_ = 0;
+  bool discard_ = false;
+};
+
+}  // namespace
+
+struct ImageTileWriter::Impl {
+  // A row of tiles being assembled for an in-order format.
+  struct Band {
+    std::vector<uint8_t> data;  // width·rows pixels of 4 channels, row-major
+    uint32_t tiles_left = 0;
+  };
+
+  std::string path;
+  TileGrid grid;
+  // Declared in this order so the image is closed, then its file, then the
+  // temporary removed.
+  AtomicFile out;
+  std::unique_ptr<CheckedFile> proxy;  // sequential 8-bit formats only
+  std::unique_ptr<OIIO::ImageOutput> file;
+  uint64_t header_writes = 0;  // proxy writes before the first row
+  bool is_float = false;
+  bool tiled = false;         // the file is tiled (tiles or whole bands of tiles go in)
+  bool random_order = false;  // tiles go to disk as they arrive
+  std::vector<bool> received;
+  uint32_t received_count = 0;
+  std::map<uint32_t, Band> bands;  // by tile row, only for !random_order
+  uint32_t next_row = 0;           // first tile row not yet written
+  uint64_t held = 0, peak = 0;
+  bool committed = false;
+
+  Impl(const std::string& p, const TileGrid& g) : path(p), grid(g), out(p) {
+    if (grid.width == 0 || grid.height == 0 || grid.size == 0)
+      throw std::runtime_error(path + ": cannot write an empty image");
+    file = OIIO::ImageOutput::create(path);
+    if (!file) throw std::runtime_error(path + ": unsupported image format: " + one_line(OIIO::geterror()));
+    const std::string fmt = file->format_name();
+    // The formats and attributes write_image() uses, so both store the same values.
+    is_float = fmt == "openexr" || fmt == "tiff";
+    OIIO::ImageSpec spec(int(grid.width), int(grid.height), 4, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "Linear");
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    // libtiff refuses tile sizes that are not multiples of 16; such renders
+    // go to a striped TIFF through the band path instead.
+    tiled = is_float && file->supports("tiles") && (fmt != "tiff" || grid.size % 16 == 0);
+    if (tiled) {
+      spec.tile_width = spec.tile_height = int(grid.size);
+      spec.tile_depth = 1;
+      // Without randomY OpenEXR keeps every out-of-order tile in memory
+      // until the ones before it arrive.
+      if (fmt == "openexr") spec.attribute("openexr:lineOrder", "randomY");
+    }
+    if (fmt == "tiff" && uint64_t(grid.width) * grid.height * 16 >= kBigTiffBytes) spec.attribute("tiff:bigtiff", 1);
+    if (!is_float && file->supports("ioproxy")) {
+      proxy = std::make_unique<CheckedFile>(out.temp_path());
+      if (proxy->open_error()) throw std::runtime_error(path + ": cannot write: " + std::strerror(proxy->open_error()));
+      file->set_ioproxy(proxy.get());
+    }
+    if (!file->open(out.temp_path(), spec)) throw std::runtime_error(path + ": cannot write: " + one_line(file->geterror()));
+    if (proxy) header_writes = proxy->writes();
+    random_order = tiled && file->supports("random_access");
+    received.assign(grid.count(), false);
+  }
+
+  ~Impl() {
+    if (!committed && file && proxy) abandon_quietly();
+  }
+
+  // Closing a PNG whose rows are missing makes libpng print "No IDATs
+  // written into file" on stderr unless compressed data has gone out
+  // already. Incompressible rows, discarded, get some out in a few rows.
+  void abandon_quietly() {
+    proxy->discard();
+    std::vector<uint8_t> noise(size_t(grid.width) * 4);
+    uint32_t x = 2463534242u;
+    for (uint8_t& b : noise) {
+      x ^= x << 13, x ^= x >> 17, x ^= x << 5;
+      b = uint8_t(x);
+    }
+    for (uint32_t y = std::min(next_row * grid.size, grid.height); y < grid.height && proxy->writes() == header_writes;
+         ++y)
+      if (!file->write_scanline(int(y), 0, OIIO::TypeDesc::UINT8, noise.data())) break;
+    file->close();
+    file->geterror();  // nobody is listening
+  }
+
+  uint64_t pixel_bytes() const { return is_float ? 16 : 4; }
+
+  [[noreturn]] void fail(const std::string& what) {
+    std::string e = file ? file->geterror() : std::string();
+    throw std::runtime_error(path + ": " + what + (e.empty() ? "" : ": " + one_line(e)));
+  }
+
+  void check_rect(const TileRect& r) const {
+    const uint32_t s = grid.size;
+    const bool ok = r.x0 < grid.width && r.y0 < grid.height && r.x0 % s == 0 && r.y0 % s == 0 &&
+                    r.x1 == std::min(r.x0 + s, grid.width) && r.y1 == std::min(r.y0 + s, grid.height);
+    if (!ok)
+      throw std::runtime_error(path + ": [" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ")x[" +
+                               std::to_string(r.y0) + "," + std::to_string(r.y1) + ") is not a tile of the " +
+                               std::to_string(grid.width) + "x" + std::to_string(grid.height) + " image in tiles of " +
+                               std::to_string(s));
+  }
+
+  void add_to_band(const TileRect& r, const float* rgba) {
+    const uint32_t row = r.y0 / grid.size;
+    auto it = bands.find(row);
+    if (it == bands.end()) {
+      Band b;
+      b.data.resize(size_t(grid.width) * r.height() * pixel_bytes());
+      b.tiles_left = grid.cols();
+      held += b.data.size();
+      peak = std::max(peak, held);
+      it = bands.emplace(row, std::move(b)).first;
+    }
+    Band& b = it->second;
+    const size_t w = r.width();
+    for (uint32_t y = 0; y < r.height(); ++y) {
+      const float* src = rgba + size_t(y) * w * 4;
+      const size_t dst = (size_t(y) * grid.width + r.x0) * 4;
+      if (is_float) {
+        std::memcpy(b.data.data() + dst * 4, src, w * 16);
+      } else {
+        uint8_t* d = b.data.data() + dst;
+        for (size_t i = 0; i < w * 4; ++i) d[i] = quantize(src[i]);
+      }
+    }
+    --b.tiles_left;
+  }
+
+  // Writes every complete band at the top, in order.
+  void flush_bands() {
+    const OIIO::TypeDesc type = is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+    for (auto it = bands.find(next_row); it != bands.end() && it->second.tiles_left == 0;
+         it = bands.find(next_row)) {
+      const int y0 = int(next_row * grid.size), y1 = int(std::min(y0 + grid.size, grid.height));
+      const void* data = it->second.data.data();
+      const bool ok = tiled ? file->write_tiles(0, int(grid.width), y0, y1, 0, 1, type, data)
+                            : file->write_scanlines(y0, y1, 0, type, data);
+      if (!ok) fail("cannot write");
+      // Stop a long render at the first failed write (a full disk), not at commit.
+      if (proxy && proxy->failed()) throw std::runtime_error(path + ": cannot write: " + proxy->finish());
+      held -= it->second.data.size();
+      bands.erase(it);
+      ++next_row;
+    }
+  }
+
+  void tile(const TileRect& r, const float* rgba) {
+    if (committed) throw std::runtime_error(path + ": tile after commit");
+    check_rect(r);
+    const uint32_t id = (r.y0 / grid.size) * grid.cols() + r.x0 / grid.size;
+    if (received[id])
+      throw std::runtime_error(path + ": tile at (" + std::to_string(r.x0) + ", " + std::to_string(r.y0) +
+                               ") delivered twice");
+    if (random_order) {
+      // write_tiles, unlike write_tile, takes an edge tile at its real size.
+      if (!file->write_tiles(int(r.x0), int(r.x1), int(r.y0), int(r.y1), 0, 1, OIIO::TypeDesc::FLOAT, rgba))
+        fail("cannot write");
+    } else {
+      add_to_band(r, rgba);
+      flush_bands();
+    }
+    received[id] = true;
+    ++received_count;
+  }
+
+  void commit() {
+    if (committed) return;
+    if (received_count != grid.count())
+      throw std::runtime_error(path + ": " + std::to_string(grid.count() - received_count) + " of " +
+                               std::to_string(grid.count()) + " tiles were never rendered; nothing written");
+    if (!file->close()) fail("cannot write");
+    file.reset();
+    if (proxy) {
+      const std::string e = proxy->finish();
+      if (!e.empty()) throw std::runtime_error(path + ": cannot write: " + e);
+    }
+    out.commit();
+    committed = true;
+  }
+};
+
+ImageTileWriter::ImageTileWriter(const std::string& path, const TileGrid& grid)
+    : impl_(std::make_unique<Impl>(path, grid)) {}
+
+ImageTileWriter::~ImageTileWriter() = default;
+
+void ImageTileWriter::tile(const TileRect& r, const float* rgba) { impl_->tile(r, rgba); }
+
+uint64_t ImageTileWriter::buffer_bytes_estimate() const {
+  const Impl& m = *impl_;
+  const uint64_t n = m.grid.count();
+  // The arrival bitmap, and the per-tile offset and size tables the file
+  // library keeps until close.
+  uint64_t bytes = n / 8 + 1 + n * 16;
+  if (m.random_order) {
+    // The library's padded copy of a tile and its compression scratch.
+    bytes += 4 * uint64_t(m.grid.size) * m.grid.size * 16;
+  } else {
+    // Tiles arrive roughly row-major from a few threads: the band being
+    // filled, the next one, and one of slack for a slow tile.
+    bytes += 3 * uint64_t(m.grid.width) * std::min(m.grid.size, m.grid.height) * m.pixel_bytes();
+  }
+  return bytes;
+}
+
+uint64_t ImageTileWriter::peak_buffer_bytes() const { return impl_->peak; }
+bool ImageTileWriter::tiled() const { return impl_->tiled; }
+void ImageTileWriter::commit() { impl_->commit(); }
+
+}  // namespace zs
