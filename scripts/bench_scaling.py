@@ -18,6 +18,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doc_block import replace_block  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
 SHARED = os.environ.get("ZSWEEP_SHARED", os.path.join(ROOT, "..", "shared", "datasets"))
@@ -93,7 +96,6 @@ def main():
 def update_doc(rows, a):
     path = os.path.join(ROOT, "docs", "benchmarks.md")
     lines = [
-        "<!-- bench-scaling:begin (written by scripts/bench-scaling; do not edit by hand) -->",
         f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores), "
         f"`exact` integrator, `{a.scan}` scan, streamed EXR output, default memory budget (half of RAM), "
         f"`scripts/bench-scaling --meshes {a.meshes} --sizes {a.sizes} --threads {a.threads}`. "
@@ -105,16 +107,7 @@ def update_doc(rows, a):
     for r in rows:
         lines.append(f"| {r['mesh']} | {r['tets']:,} | {r['size']}² | {r['threads']} | {r['render_s']:.2f} | "
                      f"{r['speedup']:.2f}× | {r['fragments']:,} | {r['peak_rss_mib']:.0f} |")
-    lines.append("<!-- bench-scaling:end -->")
-    block = "\n".join(lines)
-    text = open(path).read()
-    b, e = "<!-- bench-scaling:begin", "<!-- bench-scaling:end -->"
-    if b in text and e in text:
-        text = text[:text.index(b)] + block + text[text.index(e) + len(e):]
-    else:
-        text = text.rstrip() + "\n\n## Thread scaling and peak memory\n\n" + block + "\n"
-    with open(path, "w") as f:
-        f.write(text)
+    replace_block(path, "bench-scaling", lines, "## Thread scaling and peak memory")
 
 
 if __name__ == "__main__":

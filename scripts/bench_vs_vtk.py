@@ -24,6 +24,9 @@ import vtk
 
 vtk.vtkObject.GlobalWarningDisplayOff()  # VTK ZSweep warns "Undefined edge case" per face
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doc_block import replace_block  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
 SHARED = os.environ.get("ZSWEEP_SHARED", os.path.join(ROOT, "..", "shared", "datasets"))
@@ -208,7 +211,6 @@ def main():
 def update_doc(rows, a):
     path = os.path.join(ROOT, "docs", "benchmarks.md")
     lines = [
-        "<!-- bench-vs-vtk:begin (written by scripts/bench-vs-vtk; do not edit by hand) -->",
         f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores), one thread, "
         f"`exact` integrator, `{a.scan}` scan, "
         f"`scripts/bench-vs-vtk --sizes {a.sizes} --meshes {a.meshes} --repeat {a.repeat}` "
@@ -230,16 +232,7 @@ def update_doc(rows, a):
                      f"{ratio(r['speedup_vs_vtk_zsweep'], 1)} | {mark(r['speedup_vs_vtk_zsweep'], 25)} | "
                      f"{sec(r['vtk_raycast_s'])} | {ratio(r['speedup_vs_vtk_raycast'], 2)} | "
                      f"{mark(r['speedup_vs_vtk_raycast'], 3)} |")
-    lines.append("<!-- bench-vs-vtk:end -->")
-    block = "\n".join(lines)
-    text = open(path).read() if os.path.exists(path) else "# Benchmarks\n\n"
-    b, e = "<!-- bench-vs-vtk:begin", "<!-- bench-vs-vtk:end -->"
-    if b in text and e in text:
-        text = text[:text.index(b)] + block + text[text.index(e) + len(e):]
-    else:
-        text = text.rstrip() + "\n\n" + block + "\n"
-    with open(path, "w") as f:
-        f.write(text)
+    replace_block(path, "bench-vs-vtk", lines, "## zsweep vs VTK's unstructured-grid mappers")
 
 
 if __name__ == "__main__":

@@ -2,6 +2,21 @@
 
 namespace zs {
 
+namespace {
+// After a fragment: the inside count and where the next segment starts.
+inline void step_past(PixelRecord& px, const Fragment& f) {
+  if (f.kind == kEntry) {
+    if (px.inside < INT16_MAX) ++px.inside;
+  } else if (f.kind == kExit) {
+    // Clamped: an exit with no matching entry (a ray grazing a silhouette
+    // vertex or edge, which has zero length inside) must not go negative.
+    if (px.inside > 0) --px.inside;
+  }
+  px.last_z = f.z;
+  px.last_s = f.s;
+}
+}  // namespace
+
 void Compositor::composite(PixelRecord& px, FragmentPool& pool, float z_limit, int X, int Y) {
   if (px.done) {
     pool.clear(px);
@@ -20,13 +35,7 @@ void Compositor::composite(PixelRecord& px, FragmentPool& pool, float z_limit, i
         batch_->push(uint32_t(&px - records_), px.last_s, f.s, double(f.z - px.last_z) * len_factor);
         ++segments_;
       }
-      if (f.kind == kEntry) {
-        if (px.inside < INT16_MAX) ++px.inside;
-      } else if (f.kind == kExit) {
-        if (px.inside > 0) --px.inside;
-      }
-      px.last_z = f.z;
-      px.last_s = f.s;
+      step_past(px, f);
       continue;
     }
     const SegmentEnd end = integ_.end(f.s);
@@ -46,15 +55,7 @@ void Compositor::composite(PixelRecord& px, FragmentPool& pool, float z_limit, i
         return;
       }
     }
-    if (f.kind == kEntry) {
-      if (px.inside < INT16_MAX) ++px.inside;
-    } else if (f.kind == kExit) {
-      // Clamped: an exit with no matching entry (a ray grazing a silhouette
-      // vertex or edge, which has zero length inside) must not go negative.
-      if (px.inside > 0) --px.inside;
-    }
-    px.last_z = f.z;
-    px.last_s = f.s;
+    step_past(px, f);
     px.last_k = int16_t(end.k);
     px.last_L = end.L;
   }

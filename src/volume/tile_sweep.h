@@ -41,7 +41,8 @@ struct SweepShared {
 };
 
 // Per-thread scratch, reused from tile to tile.
-struct TileWorkspace {
+// Aligned to its own cache lines: two threads' workspaces never share one.
+struct alignas(128) TileWorkspace {
   std::vector<PixelRecord> px;
   std::vector<uint32_t> active;  // pixels whose lists may be non-empty
   FragmentPool pool;

@@ -210,7 +210,9 @@ void ZSweepRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* t
   for (uint32_t t : *tiles) work += I.in.bins.offset[t + 1] - I.in.bins.offset[t] + 1;
   Progress progress("render", work, I.rs.progress);
   auto& spaces = I.spaces;
-  tbb::enumerable_thread_specific<RenderStats> tile_stats;
+  // Each thread's counters on their own cache lines (they change per fragment).
+  struct alignas(128) PaddedStats : RenderStats {};
+  tbb::enumerable_thread_specific<PaddedStats> tile_stats;
   std::mutex sink_mu;
   auto run = [&](size_t k) {
     const uint32_t t = (*tiles)[k];
