@@ -9,7 +9,6 @@ Writes a CSV and the table between the bench-scaling markers of
 docs/benchmarks.md.
 """
 import argparse
-import csv
 import datetime
 import json
 import os
@@ -19,7 +18,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from doc_block import replace_block  # noqa: E402
+from bench_common import cpu_name, replace_block, write_csv  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
@@ -41,12 +40,6 @@ def mesh_args(name):
     return args
 
 
-def cpu_name():
-    with open("/proc/cpuinfo") as f:
-        for line in f:
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    return "unknown CPU"
 
 
 def main():
@@ -84,11 +77,7 @@ def main():
                           f"peak RSS {row['peak_rss_mib']:.0f} MiB, {st['fragments']:,} fragments", flush=True)
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(os.path.dirname(a.csv), exist_ok=True)
-    with open(a.csv, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(a.csv, rows)
     if not a.no_doc:
         update_doc(rows, a)
 

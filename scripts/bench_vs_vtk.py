@@ -9,12 +9,10 @@ here and given to both. Times are steady-state frames: VTK's first Render()
 mesh loading and topology, which VTK also keeps between frames.
 """
 import argparse
-import csv
 import datetime
 import json
 import math
 import os
-import platform
 import subprocess
 import sys
 import tempfile
@@ -25,7 +23,7 @@ import vtk
 vtk.vtkObject.GlobalWarningDisplayOff()  # VTK ZSweep warns "Undefined edge case" per face
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from doc_block import replace_block  # noqa: E402
+from bench_common import cpu_name, replace_block, write_csv  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
@@ -149,15 +147,6 @@ def time_vtk(vtu, scene, mapper_kind, repeat, out_png):
     return min(times)
 
 
-def cpu_name():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown CPU"
 
 
 def main():
@@ -200,10 +189,7 @@ def main():
             print(f"{name:6s} {size:5d}²  zsweep {ours:7.3f} s (max abs vs reference {err:.2g})   "
                   f"VTK ZSweep {vz:7.3f} s ({vz / ours:5.1f}x)   "
                   f"VTK ray cast {vr:7.3f} s ({vr / ours:5.2f}x)", flush=True)
-    with open(a.csv, "w", newline="") as f:
-        wr = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        wr.writeheader()
-        wr.writerows(rows)
+    write_csv(a.csv, rows)
     if not a.no_doc:
         update_doc(rows, a)
 

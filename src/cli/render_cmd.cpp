@@ -28,6 +28,8 @@ void write_stats(const std::string& path, const RenderStats& S, const Scene& sce
       {"time_ms",
        {{"total", S.ms_total},
         {"setup", S.ms_setup},
+        {"order", S.ms_order},
+        {"binning", S.ms_binning},
         {"list_generation", S.ms_list_generation},
         {"scan_convert", S.ms_scan_convert},
         {"insert", S.ms_insert},
