@@ -1,8 +1,9 @@
 // The exact integrator's one-piece light (segment_integrator.cpp,
 // integrate_linear_piece) written once over a lane type V, so the same
-// arithmetic runs on one double (V = Lane1) or four (V = Lane4, AVX2) and
-// gives bit-identical results either way: only IEEE +, -, *, / and exact
-// bit manipulation, in the same order, no contraction into FMA.
+// arithmetic runs on one double (V = Lane1), four (Lane4, AVX2) or eight
+// (Lane8, AVX-512) and gives bit-identical results every way: only IEEE +,
+// -, *, / and exact bit manipulation, in the same order, no contraction into
+// FMA, and table lookups (exact).
 //
 // exp and log are our own (Cody–Waite reduction and Taylor / atanh series,
 // ~1 ulp) because libm's are scalar. Inputs are those of a piece: w = 1 - a
@@ -134,20 +135,82 @@ inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out)
   out->T = T;
 }
 
-// Structure-of-arrays pieces for the batch kernels (n a multiple of 4).
-struct PieceArrays {
-  double* c0[3];
-  double* a0;
-  double* c1[3];
-  double* a1;
-  double* len;
+// A transfer function as per-interval tables the batch kernels index by
+// n = (breakpoints at or below s) = k + 1, k = TransferFunction::interval(s)
+// in [-1, nb - 1]. Entry n holds the interval's left breakpoint, 1/width, and
+// rgba at its left end with the slope to its right end (rgba_in's arithmetic:
+// c = lo + t·d, t = (s - bs)·inv_w); the two clamped ends (n = 0, n = nb) hold
+// the end value, with t forced to 0. Every table has at least 8 entries
+// (zero-padded), so an 8-lane kernel can hold one in a register.
+struct TfTables {
+  int nb = 0;                 // breakpoints
+  const double* bs = nullptr; // the nb breakpoints, for counting
+  const double* left = nullptr;
+  const double* inv_w = nullptr;
+  const double* lo[4] = {};
+  const double* d[4] = {};
+};
+
+// A batch of segments, structure of arrays (n a multiple of the lane count).
+// n0/n1: the breakpoint counts of s0/s1, precomputed by the caller for long
+// transfer functions (null: the kernel counts, for nb <= kCountInKernel).
+struct SegmentSoA {
+  const double *s0, *s1, *len;
+  const double *n0 = nullptr, *n1 = nullptr;
   double* rgb[3];
   double* T;
-  uint8_t* ok;
+  uint8_t* ok;  // 0: the caller integrates this segment itself
 };
-void piece_lights_scalar(const PieceArrays& p, size_t n, double inv_unit);
-void piece_lights_avx2(const PieceArrays& p, size_t n, double inv_unit);  // needs AVX2 at run time
+constexpr int kCountInKernel = 16;
+
+// Segments i .. i + lanes - 1: both ends' colour and opacity from the tables,
+// then piece_light. `ok` is false where the segment crosses a breakpoint
+// (several pieces) or the Hermite bound fails.
+template <class V>
+inline void segment_light(const TfTables& tf, const SegmentSoA& q, size_t i, double inv_unit) {
+  const V one(1.0), zero(0.0);
+  const V s0 = V::load(q.s0 + i), s1 = V::load(q.s1 + i);
+  V n0 = zero, n1 = zero;
+  if (q.n0) {
+    n0 = V::load(q.n0 + i);
+    n1 = V::load(q.n1 + i);
+  } else {
+    // !(s < b) counts b <= s, and counts NaN above every breakpoint, as
+    // TransferFunction::interval does.
+    for (int j = 0; j < tf.nb; ++j) {
+      const V b(tf.bs[j]);
+      n0 = select(not_less(s0, b), n0 + one, n0);
+      n1 = select(not_less(s1, b), n1 + one, n1);
+    }
+  }
+  const bool small = tf.nb + 1 <= 8;
+  const auto inside = V::mask_and(n0 >= one, n0 <= V(double(tf.nb - 1)));
+  const V left = V::lookup(tf.left, n0, small), inv_w = V::lookup(tf.inv_w, n0, small);
+  const V t0 = select(inside, (s0 - left) * inv_w, zero), t1 = select(inside, (s1 - left) * inv_w, zero);
+  PieceIn<V> in;
+  V lo = V::lookup(tf.lo[3], n0, small), d = V::lookup(tf.d[3], n0, small);
+  in.a0 = lo + t0 * d;
+  in.a1 = lo + t1 * d;
+  for (int k = 0; k < 3; ++k) {
+    lo = V::lookup(tf.lo[k], n0, small);
+    d = V::lookup(tf.d[k], n0, small);
+    in.c0[k] = lo + t0 * d;
+    in.c1[k] = lo + t1 * d;
+  }
+  in.len = V::load(q.len + i);
+  PieceOut<V> out;
+  piece_light(in, inv_unit, &out);
+  for (int k = 0; k < 3; ++k) out.rgb[k].store(q.rgb[k] + i);
+  out.T.store(q.T + i);
+  V::store_mask(q.ok + i, V::mask_and(out.ok, n0 == n1));
+}
+
+// The batch over n segments (a multiple of 8), one lane width each.
+void segment_lights_scalar(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit);
+void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit);    // needs AVX2
+void segment_lights_avx512(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit);  // needs AVX-512F
 bool have_avx2();
+bool have_avx512();
 
 // One double per lane.
 struct Lane1 {
@@ -162,6 +225,14 @@ struct Lane1 {
   friend bool operator<(Lane1 a, Lane1 b) { return a.v < b.v; }
   friend bool operator>(Lane1 a, Lane1 b) { return a.v > b.v; }
   friend bool operator<=(Lane1 a, Lane1 b) { return a.v <= b.v; }
+  friend bool operator>=(Lane1 a, Lane1 b) { return a.v >= b.v; }
+  friend bool operator==(Lane1 a, Lane1 b) { return a.v == b.v; }
+  friend bool not_less(Lane1 a, Lane1 b) { return !(a.v < b.v); }
+  static Lane1 load(const double* p) { return Lane1(*p); }
+  void store(double* p) const { *p = v; }
+  static bool mask_and(bool a, bool b) { return a && b; }
+  static void store_mask(uint8_t* p, bool m) { *p = m; }
+  static Lane1 lookup(const double* table, Lane1 n, bool) { return Lane1(table[size_t(n.v)]); }
   // max/min as the AVX instructions define them (second operand on NaN).
   friend Lane1 max(Lane1 a, Lane1 b) { return Lane1(a.v > b.v ? a.v : b.v); }
   friend Lane1 abs(Lane1 a) {

@@ -15,6 +15,8 @@ struct Lane4 {
   Lane4() = default;
   explicit Lane4(double x) : v(_mm256_set1_pd(x)) {}
   explicit Lane4(__m256d x) : v(x) {}
+  static Lane4 load(const double* p) { return Lane4(_mm256_loadu_pd(p)); }
+  void store(double* p) const { _mm256_storeu_pd(p, v); }
   friend Lane4 operator+(Lane4 a, Lane4 b) { return Lane4(_mm256_add_pd(a.v, b.v)); }
   friend Lane4 operator-(Lane4 a, Lane4 b) { return Lane4(_mm256_sub_pd(a.v, b.v)); }
   friend Lane4 operator*(Lane4 a, Lane4 b) { return Lane4(_mm256_mul_pd(a.v, b.v)); }
@@ -22,6 +24,30 @@ struct Lane4 {
   friend __m256d operator<(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ); }
   friend __m256d operator>(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_GT_OQ); }
   friend __m256d operator<=(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_LE_OQ); }
+  friend __m256d operator>=(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_GE_OQ); }
+  friend __m256d operator==(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_EQ_OQ); }
+  friend __m256d not_less(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_NLT_UQ); }
+  static __m256d mask_and(__m256d a, __m256d b) { return _mm256_and_pd(a, b); }
+  static void store_mask(uint8_t* p, __m256d m) {
+    const int bits = _mm256_movemask_pd(m);
+    for (int l = 0; l < 4; ++l) p[l] = uint8_t((bits >> l) & 1);
+  }
+  // table[n] per lane; n holds small non-negative integers. Tables of at
+  // most 8 entries are permuted from two registers (a double is a pair of
+  // 32-bit halves for vpermps), longer ones gathered.
+  static Lane4 lookup(const double* table, Lane4 n, bool small) {
+    const __m128i i32 = _mm256_cvttpd_epi32(n.v);
+    if (small) {
+      const __m256i i64 = _mm256_cvtepu32_epi64(i32);
+      const __m256i lo = _mm256_slli_epi64(_mm256_and_si256(i64, _mm256_set1_epi64x(3)), 1);
+      const __m256i pair = _mm256_or_si256(lo, _mm256_slli_epi64(_mm256_add_epi64(lo, _mm256_set1_epi64x(1)), 32));
+      const __m256 a = _mm256_permutevar8x32_ps(_mm256_castpd_ps(_mm256_loadu_pd(table)), pair);
+      const __m256 b = _mm256_permutevar8x32_ps(_mm256_castpd_ps(_mm256_loadu_pd(table + 4)), pair);
+      const __m256d high = _mm256_castsi256_pd(_mm256_cmpgt_epi64(i64, _mm256_set1_epi64x(3)));
+      return Lane4(_mm256_blendv_pd(_mm256_castps_pd(a), _mm256_castps_pd(b), high));
+    }
+    return Lane4(_mm256_mask_i32gather_pd(_mm256_setzero_pd(), table, i32, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8));
+  }
   // maxpd returns its second operand unless the first is greater: as Lane1.
   friend Lane4 max(Lane4 a, Lane4 b) { return Lane4(_mm256_max_pd(a.v, b.v)); }
   friend Lane4 abs(Lane4 a) {
@@ -52,23 +78,8 @@ struct Lane4 {
 
 }  // namespace
 
-void piece_lights_avx2(const PieceArrays& p, size_t n, double inv_unit) {
-  for (size_t i = 0; i < n; i += 4) {
-    PieceIn<Lane4> in;
-    for (int k = 0; k < 3; ++k) {
-      in.c0[k] = Lane4(_mm256_loadu_pd(p.c0[k] + i));
-      in.c1[k] = Lane4(_mm256_loadu_pd(p.c1[k] + i));
-    }
-    in.a0 = Lane4(_mm256_loadu_pd(p.a0 + i));
-    in.a1 = Lane4(_mm256_loadu_pd(p.a1 + i));
-    in.len = Lane4(_mm256_loadu_pd(p.len + i));
-    PieceOut<Lane4> out;
-    piece_light(in, inv_unit, &out);
-    for (int k = 0; k < 3; ++k) _mm256_storeu_pd(p.rgb[k] + i, out.rgb[k].v);
-    _mm256_storeu_pd(p.T + i, out.T.v);
-    const int mask = _mm256_movemask_pd(out.ok);
-    for (int l = 0; l < 4; ++l) p.ok[i + size_t(l)] = uint8_t((mask >> l) & 1);
-  }
+void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit) {
+  for (size_t i = 0; i < n; i += 4) segment_light<Lane4>(tf, q, i, inv_unit);
 }
 
 }  // namespace zs::light

@@ -1,10 +1,11 @@
 // Deferred segment integration for the exact integrator: the compositor
 // queues each segment (which needs nothing of the pixel's state but its ends)
-// and a full queue is integrated four at a time (light_kernel.h) and then
-// applied to its pixels in queue order — the order the segments were made,
-// so every pixel composites exactly as it would one by one. Pieces the
-// vector kernel cannot take (a TF breakpoint inside, or the Hermite bound
-// failing) go through SegmentIntegrator as before.
+// and a full queue is integrated by the widest vector kernel the CPU has
+// (light_kernel.h: transfer-function lookups and the piece's light, 8 or 4
+// segments at a time) and then applied to its pixels in queue order — the
+// order the segments were made, so every pixel composites exactly as it
+// would one by one. Segments the kernel cannot take (a TF breakpoint inside,
+// or the Hermite bound failing) go through SegmentIntegrator as before.
 #pragma once
 
 #include <cstdint>
@@ -16,10 +17,15 @@
 
 namespace zs {
 
+// Which kernel a batch runs: the widest the CPU supports unless capped
+// (tests compare them; ZSWEEP_KERNEL=scalar|avx2|avx512 caps it too).
+enum class KernelWidth { Scalar = 1, AVX2 = 4, AVX512 = 8 };
+KernelWidth best_kernel_width();
+
 class SegmentBatch {
  public:
-  static constexpr size_t kCapacity = 512;  // a multiple of 4
-  SegmentBatch(const SegmentIntegrator& integ, const TransferFunction& tf);
+  static constexpr size_t kCapacity = 512;  // a multiple of 8
+  SegmentBatch(const SegmentIntegrator& integ, const TransferFunction& tf, KernelWidth width = best_kernel_width());
 
   bool full() const { return n_ == kCapacity; }
   void push(uint32_t pixel, double s0, double s1, double len) {
@@ -31,17 +37,22 @@ class SegmentBatch {
   }
   // Integrates the queued segments and composites them into px[pixel].
   void flush(PixelRecord* px);
+  // The same segments' light without compositing (tests): rgb and T per segment.
+  void integrate(std::vector<SegmentLight>* out);
 
  private:
+  void run_kernel();
+
   const SegmentIntegrator& integ_;
   const TransferFunction& tf_;
-  bool avx2_;
+  KernelWidth width_;
   size_t n_ = 0;
   std::vector<uint32_t> pixel_;
-  std::vector<double> s0_, s1_, len_;
-  std::vector<double> buf_;  // the kernel's structure of arrays
-  std::vector<uint8_t> ok_, split_;
-  light::PieceArrays arrays_;
+  std::vector<double> s0_, s1_, len_, n0_, n1_, rgb_[3], T_;
+  std::vector<uint8_t> ok_;
+  std::vector<double> tables_;  // TfTables' storage
+  light::TfTables tf_tables_;
+  double inv_unit_;
 };
 
 }  // namespace zs

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "volume/light_kernel.h"
+#include "volume/segment_batch.h"
 #include "volume/segment_integrator.h"
 
 namespace zs {
@@ -75,64 +76,73 @@ TEST(SegmentIntegrator, LinearPieceMatchesBruteForce) {
   EXPECT_LE(worst_T, 1e-11);
 }
 
-// The batch kernel (light_kernel.h): the AVX2 and the one-lane build give
-// the same bits, and both agree with the scalar kernel within its bound.
-TEST(SegmentIntegrator, BatchKernelMatchesScalarBitForBit) {
-  const size_t n = 4000;
-  std::vector<double> buf(n * 14);
-  std::vector<uint8_t> ok1(n), ok4(n);
-  auto arrays = [&](double* base, uint8_t* ok) {
-    light::PieceArrays a;
-    double* b = base;
-    auto next = [&] { double* r = b; b += n; return r; };
-    for (int k = 0; k < 3; ++k) a.c0[k] = next();
-    a.a0 = next();
-    for (int k = 0; k < 3; ++k) a.c1[k] = next();
-    a.a1 = next();
-    a.len = next();
-    for (int k = 0; k < 3; ++k) a.rgb[k] = next();
-    a.T = next();
-    a.ok = ok;
-    return a;
-  };
-  light::PieceArrays A = arrays(buf.data(), ok1.data());
-  std::mt19937_64 rng(11);
+// The batch kernels (segment_batch.h, light_kernel.h): the one-lane, AVX2
+// and AVX-512 builds give the same bits, and agree with the scalar exact
+// integrator within its bound, on a short transfer function (looked up from
+// registers) and a long one (counted by the caller, gathered), with segments
+// inside one interval, across breakpoints, and clamped below and above.
+void check_batch_widths(const TransferFunction& tf, double s_lo, double s_hi, uint64_t seed) {
+  const SegmentIntegrator integ(tf, Integrator::Exact);
+  std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u01(0, 1);
-  for (size_t i = 0; i < n; ++i) {
-    for (int k = 0; k < 3; ++k) A.c0[k][i] = u01(rng), A.c1[k][i] = A.c0[k][i] + 0.01 * (u01(rng) - 0.5);
-    const double a = u01(rng) * (1 - 1e-6);
-    A.a0[i] = a;
-    A.a1[i] = i % 7 == 0 ? a : std::clamp(a + 0.05 * (u01(rng) - 0.5), 0.0, 1 - 1e-6);
-    A.len[i] = i % 5 == 0 ? 0.0 : std::pow(10.0, -4 + 4 * u01(rng));
+  struct Seg {
+    double s0, s1, len;
+  };
+  std::vector<Seg> segs;
+  for (int i = 0; i < 5000; ++i) {
+    const double s0 = s_lo + (s_hi - s_lo) * u01(rng);
+    // Mostly short steps in the scalar (one interval), some long ones.
+    const double s1 = i % 9 == 0 ? s_lo + (s_hi - s_lo) * u01(rng) : s0 + 0.01 * (s_hi - s_lo) * (u01(rng) - 0.5);
+    const double len = i % 5 == 0 ? 0.0 : std::pow(10.0, -4 + 4 * u01(rng));
+    segs.push_back({s0, s1, len});
   }
-  std::vector<double> buf4 = buf;
-  light::PieceArrays B = arrays(buf4.data(), ok4.data());
-  const double inv_unit = 1 / 0.7;
-  light::piece_lights_scalar(A, n, inv_unit);
-  if (light::have_avx2()) {
-    light::piece_lights_avx2(B, n, inv_unit);
-    for (size_t i = 0; i < n; ++i) {
-      ASSERT_EQ(A.T[i], B.T[i]) << i;
-      ASSERT_EQ(ok1[i], ok4[i]) << i;
-      for (int k = 0; k < 3; ++k) ASSERT_EQ(A.rgb[k][i], B.rgb[k][i]) << i;
+  std::vector<KernelWidth> widths = {KernelWidth::Scalar};
+  if (light::have_avx2()) widths.push_back(KernelWidth::AVX2);
+  if (light::have_avx512()) widths.push_back(KernelWidth::AVX512);
+  std::vector<std::vector<SegmentLight>> got(widths.size());
+  for (size_t w = 0; w < widths.size(); ++w) {
+    SegmentBatch batch(integ, tf, widths[w]);
+    std::vector<SegmentLight> part;
+    for (size_t i = 0; i < segs.size(); ++i) {
+      batch.push(uint32_t(i), segs[i].s0, segs[i].s1, segs[i].len);
+      if (batch.full() || i + 1 == segs.size()) {
+        batch.integrate(&part);
+        got[w].insert(got[w].end(), part.begin(), part.end());
+      }
     }
-  } else {
-    std::printf("no AVX2 on this CPU: only the one-lane kernel is checked\n");
+    ASSERT_EQ(got[w].size(), segs.size());
   }
+  for (size_t w = 1; w < widths.size(); ++w)
+    for (size_t i = 0; i < segs.size(); ++i) {
+      ASSERT_EQ(got[0][i].T, got[w][i].T) << "width " << int(widths[w]) << " segment " << i;
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(got[0][i].rgb[k], got[w][i].rgb[k]) << int(widths[w]) << " " << i;
+    }
   double worst = 0;
-  size_t accepted = 0;
-  for (size_t i = 0; i < n; ++i) {
-    if (!ok1[i]) continue;
-    ++accepted;
-    const double c0[3] = {A.c0[0][i], A.c0[1][i], A.c0[2][i]}, c1[3] = {A.c1[0][i], A.c1[1][i], A.c1[2][i]};
-    const SegmentLight l = integrate_linear_piece(c0, A.a0[i], c1, A.a1[i], A.len[i], 0.7);
-    worst = std::max(worst, std::abs(l.T - A.T[i]));
-    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(l.rgb[k] - A.rgb[k][i]));
+  for (size_t i = 0; i < segs.size(); ++i) {
+    const SegmentLight l = integ.integrate(segs[i].s0, segs[i].s1, segs[i].len);
+    worst = std::max(worst, std::abs(l.T - got[0][i].T));
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(l.rgb[k] - got[0][i].rgb[k]));
   }
-  std::printf("%zu of %zu pieces taken by the Hermite rule; max difference from the scalar kernel %.2e\n",
-              accepted, n, worst);
-  EXPECT_GT(accepted, n / 2);
+  std::printf("%zu breakpoints, %zu widths: max difference from the scalar integrator %.2e\n",
+              tf.breakpoints().size(), widths.size(), worst);
   EXPECT_LE(worst, 2e-9);
+}
+
+TEST(SegmentIntegrator, BatchKernelsMatchBitForBit) {
+  // Short: three colour points, two opacity points (one table register).
+  const TransferFunction short_tf({{0.0, 0.23, 0.30, 0.75}, {0.5, 0.87, 0.87, 0.87}, {1.0, 0.71, 0.02, 0.15}},
+                                  {{0.0, 0.0}, {1.0, 0.6}}, 0.3);
+  check_batch_widths(short_tf, -0.2, 1.2, 11);
+  // Long: 40 opacity points (counted by the caller, tables gathered).
+  std::vector<OpacityPoint> op;
+  for (int i = 0; i < 40; ++i) op.push_back({i / 39.0, 0.45 + 0.4 * std::sin(i * 0.7)});
+  const TransferFunction long_tf({{0.0, 0.1, 0.2, 0.6}, {1.0, 0.9, 0.2, 0.1}}, op, 0.3);
+  check_batch_widths(long_tf, -0.1, 1.1, 12);
+  // Nine breakpoints: counted in the kernel, gathered by the 8-lane build.
+  std::vector<OpacityPoint> op9;
+  for (int i = 0; i < 9; ++i) op9.push_back({i / 8.0, 0.1 + 0.1 * i});
+  const TransferFunction mid_tf({{0.0, 0.1, 0.2, 0.6}, {1.0, 0.9, 0.2, 0.1}}, op9, 0.3);
+  check_batch_widths(mid_tf, -0.1, 1.1, 13);
 }
 
 }  // namespace
