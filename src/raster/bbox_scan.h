@@ -8,6 +8,6 @@
 
 namespace zs {
 
-void scan_bbox(const ScreenTriangle& t, const Viewport& vp, FaceFragments& out, ScanCounters& c);
+void scan_bbox(const ScreenTriangle& t, const Viewport& vp, FaceSpans& out, ScanCounters& c);
 
 }  // namespace zs

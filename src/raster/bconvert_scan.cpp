@@ -54,27 +54,29 @@ bool bconvert_list(const ScreenVertex v[3], BConvertVariant variant, const Viewp
   return true;
 }
 
-void bconvert_scan(const ScreenTriangle& t, const Viewport& vp, BConvertScratch& s, FaceFragments& out,
+void bconvert_scan(const ScreenTriangle& t, const Viewport& vp, BConvertScratch& s, FaceSpans& out,
                    ScanCounters& c, RowEndMisses* row_ends) {
   const CompactList& L = s.list;
-  const size_t before = out.size();
-  uint64_t tested = 0;
+  uint64_t tested = 0, hits = 0;
   const int32_t j0 = std::max(L.y0, int32_t(vp.y0)), j1 = std::min(L.y1, int32_t(vp.y1 - 1));
   for (int32_t j = j0; j <= j1; ++j) {
     const size_t r = size_t(j - L.y0);
     const int32_t i0 = std::max(L.xi[r], int32_t(vp.x0)), i1 = std::min(L.xf[r], int32_t(vp.x1 - 1));
     if (i0 > i1) continue;
-    c.pixel_tests += uint64_t(i1 - i0 + 1);
     tested += uint64_t(i1 - i0 + 1);
-    int32_t first = -1, last = -1;
+    // The hits of a candidate run are one run (screen_triangle.h); runs are
+    // closed wherever a miss follows a hit all the same.
+    int32_t first = -1, last = -1, run = -1;
     for (int32_t i = i0; i <= i1; ++i) {
-      if (!t.inside(i, j)) continue;
-      double z, sc;
-      t.attributes(i, j, &z, &sc);
-      out.push(i, j, z, sc);
+      if (!t.inside(i, j)) {
+        if (run >= 0) out.push(j, run, i - 1), hits += uint64_t(i - run), run = -1;
+        continue;
+      }
+      if (run < 0) run = i;
       if (first < 0) first = i;
       last = i;
     }
+    if (run >= 0) out.push(j, run, i1), hits += uint64_t(i1 - run + 1);
     if (row_ends) {
       if (first < 0) {
         row_ends->add(uint64_t(i1 - i0 + 1));
@@ -84,8 +86,9 @@ void bconvert_scan(const ScreenTriangle& t, const Viewport& vp, BConvertScratch&
       }
     }
   }
-  c.pixel_hits += out.size() - before;
-  c.pixel_misses += tested - (out.size() - before);
+  c.pixel_tests += tested;
+  c.pixel_hits += hits;
+  c.pixel_misses += tested - hits;
 }
 
 }  // namespace zs

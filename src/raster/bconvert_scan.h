@@ -41,7 +41,7 @@ struct RowEndMisses {
 // viewport): the caller then uses the bounding box.
 bool bconvert_list(const ScreenVertex v[3], BConvertVariant variant, const Viewport& vp, BConvertScratch& s);
 // Scans the compact list built by bconvert_list.
-void bconvert_scan(const ScreenTriangle& t, const Viewport& vp, BConvertScratch& s, FaceFragments& out,
+void bconvert_scan(const ScreenTriangle& t, const Viewport& vp, BConvertScratch& s, FaceSpans& out,
                    ScanCounters& c, RowEndMisses* row_ends);
 
 }  // namespace zs

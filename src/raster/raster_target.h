@@ -1,5 +1,7 @@
-// What a scan strategy writes: the pixels a face covers, with depth and
-// scalar, into plain reusable arrays (no allocation per fragment). The caller
+// What a scan strategy writes: the pixels a face covers, as runs along rows
+// (every strategy's inside set of a row is one run: screen_triangle.h), in
+// plain reusable arrays (no allocation per fragment). The caller evaluates
+// depth and scalar where it needs them (ScreenTriangle::attributes) and
 // decides what a fragment means (a list entry, a depth sample, ...), so every
 // renderer shares the same rasterization.
 #pragma once
@@ -27,6 +29,24 @@ struct ScanCounters {
   }
 };
 
+// Pixels x0..x1 (inclusive) of row y.
+struct RowSpan {
+  int32_t y, x0, x1;
+};
+
+struct FaceSpans {
+  std::vector<RowSpan> rows;
+  size_t size() const { return rows.size(); }
+  void clear() { rows.clear(); }
+  void push(int32_t y, int32_t x0, int32_t x1) { rows.push_back({y, x0, x1}); }
+  uint64_t pixels() const {
+    uint64_t n = 0;
+    for (const RowSpan& r : rows) n += uint64_t(r.x1 - r.x0 + 1);
+    return n;
+  }
+};
+
+// Per-pixel fragments (tests and simple consumers: expand_spans).
 struct FaceFragments {
   std::vector<int32_t> x, y;
   std::vector<double> z, s;

@@ -1,5 +1,7 @@
 #include "raster/screen_triangle.h"
 
+#include "raster/raster_target.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -68,14 +70,13 @@ bool setup_triangle(const ScreenVertex v[3], bool perspective, ScreenTriangle* t
   return true;
 }
 
-void ScreenTriangle::attributes(double X, double Y, double* z, double* s) const {
-  const double dx = X - x0, dy = Y - y0;
-  const double q = q_c + q_gx * dx + q_gy * dy;
-  const double r = r_c + r_gx * dx + r_gy * dy;
-  double zz = perspective ? 1.0 / q : q;
-  double ss = perspective ? r * zz : r;
-  *z = std::clamp(zz, z_lo, z_hi);
-  *s = std::clamp(ss, s_lo, s_hi);
+void expand_spans(const ScreenTriangle& t, const FaceSpans& spans, FaceFragments& out) {
+  for (const RowSpan& r : spans.rows)
+    for (int32_t i = r.x0; i <= r.x1; ++i) {
+      double z, s;
+      t.attributes(i, r.y, &z, &s);
+      out.push(i, r.y, z, s);
+    }
 }
 
 }  // namespace zs

@@ -14,6 +14,7 @@
 // perspective 1/z and s/z are (perspective-correct interpolation).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 namespace zs {
@@ -50,8 +51,17 @@ struct ScreenTriangle {
   bool inside(double X, double Y) const {
     return edge[0].inside(X, Y) && edge[1].inside(X, Y) && edge[2].inside(X, Y);
   }
-  // Depth and scalar at a pixel centre known to be inside.
-  void attributes(double X, double Y, double* z, double* s) const;
+  // Depth and scalar at a pixel centre known to be inside. Inline: every
+  // fragment of every renderer comes through here.
+  void attributes(double X, double Y, double* z, double* s) const {
+    const double dx = X - x0, dy = Y - y0;
+    const double q = q_c + q_gx * dx + q_gy * dy;
+    const double r = r_c + r_gx * dx + r_gy * dy;
+    const double zz = perspective ? 1.0 / q : q;
+    const double ss = perspective ? r * zz : r;
+    *z = std::clamp(zz, z_lo, z_hi);
+    *s = std::clamp(ss, s_lo, s_hi);
+  }
 };
 
 // Twice the signed screen area (the edge-function determinant); zero or
@@ -63,5 +73,10 @@ inline double screen_det(const ScreenVertex v[3]) {
 // Returns false (and sets nothing useful) for a triangle with zero screen area:
 // seen exactly edge-on, it contains no pixel centre in its interior.
 bool setup_triangle(const ScreenVertex v[3], bool perspective, ScreenTriangle* t);
+
+struct FaceSpans;
+struct FaceFragments;
+// Appends the fragments (pixel, depth, scalar) of a face's spans.
+void expand_spans(const ScreenTriangle& t, const FaceSpans& spans, FaceFragments& out);
 
 }  // namespace zs

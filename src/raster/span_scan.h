@@ -1,10 +1,10 @@
-// Strategy 3 (ours): exact spans. Per row, the first and last pixel centres
-// inside the triangle come from the three edge functions solved for X; only
-// the span ends are checked with the exact inside test (screen_triangle.h),
-// the interior is emitted without testing. Each edge function, as evaluated
-// in floating point, is monotone along a row, so the inside set of a row is
-// one interval and the checked ends make it exactly the set the bounding-box
-// scan finds: identical fragments, identical images, no missing pixels.
+// Strategy 3 (ours): exact spans. Each edge function, as evaluated in
+// floating point, is monotone along a row, so each edge's inside set on a row
+// is a half-line: per row and edge, the end is solved for X and then stepped
+// to exactly with that edge's own inside test (screen_triangle.h); the span
+// is the intersection of the three. The interior is emitted without testing.
+// The result is exactly the set the bounding-box scan finds: identical
+// fragments, identical images, no missing pixels.
 #pragma once
 
 #include "raster/raster_target.h"
@@ -12,6 +12,6 @@
 
 namespace zs {
 
-void scan_span(const ScreenTriangle& t, const Viewport& vp, FaceFragments& out, ScanCounters& c);
+void scan_span(const ScreenTriangle& t, const Viewport& vp, FaceSpans& out, ScanCounters& c);
 
 }  // namespace zs

@@ -60,16 +60,56 @@ class FragmentPool {
   void reset(size_t max_fragments);
 
   // False when the pool is at its bound (the caller composites and retries).
-  bool insert(PixelRecord& px, float z, float s, uint32_t kind);
-  const Fragment& at(uint32_t idx) const { return pool_[idx]; }
+  // Inline: once per fragment.
+  bool insert(PixelRecord& px, float z, float s, uint32_t kind) {
+    uint32_t idx = free_;
+    if (idx != kNil) {
+      free_ = data_[idx].next;
+    } else {
+      if (used_ == cap_ && !grow()) return false;
+      idx = uint32_t(used_++);
+    }
+    Fragment& f = data_[idx];
+    f.z = z;
+    f.s = s;
+    f.kind = kind;
+    if (++live_ > peak_) peak_ = live_;
+    if (px.len != UINT16_MAX) ++px.len;
+    if (px.head == kNil) {
+      f.next = kNil;
+      px.head = px.tail = idx;
+      return true;
+    }
+    if (before(data_[px.tail], z, kind)) {  // the sweep's common case
+      f.next = kNil;
+      data_[px.tail].next = idx;
+      px.tail = idx;
+      return true;
+    }
+    if (!before(data_[px.head], z, kind)) {
+      f.next = px.head;
+      px.head = idx;
+      return true;
+    }
+    uint32_t p = px.head;
+    while (before(data_[data_[p].next], z, kind)) p = data_[p].next;
+    f.next = data_[p].next;
+    data_[p].next = idx;
+    return true;
+  }
+  const Fragment& at(uint32_t idx) const { return data_[idx]; }
+  // Returns a fragment already unlinked from its list to the free list.
+  void release(uint32_t idx) {
+    data_[idx].next = free_;
+    free_ = idx;
+    --live_;
+  }
   // Removes and frees the first fragment of a non-empty list.
   void pop_front(PixelRecord& px) {
     const uint32_t idx = px.head;
-    px.head = pool_[idx].next;
+    px.head = data_[idx].next;
     if (px.head == kNil) px.tail = kNil;
-    pool_[idx].next = free_;
-    free_ = idx;
-    --live_;
+    release(idx);
     if (px.head == kNil) px.len = 0;
     else if (px.len != UINT16_MAX) --px.len;  // once saturated, stays so until empty
   }
@@ -82,7 +122,13 @@ class FragmentPool {
   size_t max_fragments() const { return max_; }
 
  private:
-  std::vector<Fragment> pool_;
+  // Order among fragments at the same depth: see FragmentKind.
+  static bool before(const Fragment& a, float z, uint32_t kind) { return a.z < z || (a.z == z && a.kind <= kind); }
+  bool grow();  // more slots, up to max_; false at the bound
+
+  std::vector<Fragment> storage_;  // slots [0, used_) have been handed out
+  Fragment* data_ = nullptr;
+  size_t cap_ = 0, used_ = 0;
   uint32_t free_ = kNil;
   size_t max_ = 0, live_ = 0, peak_ = 0;
 };

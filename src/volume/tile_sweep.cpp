@@ -75,6 +75,8 @@ class TileSweep {
     }
     composite_all(INFINITY);
     comp_.flush();
+    S_.fragments += fragments_;
+    S_.max_list_length = std::max(S_.max_list_length, max_len_);
     S_.segments += comp_.segments();
     S_.early_terminated_pixels += comp_.terminated_pixels();
     S_.peak_fragments = std::max<uint64_t>(S_.peak_fragments, ws_.pool.peak_fragments());
@@ -82,27 +84,69 @@ class TileSweep {
   }
 
  private:
-  void composite_pixel(uint32_t p, float z_limit) {
-    comp_.composite(ws_.px[p], ws_.pool, z_limit, vp_.x0 + int(p % vw_), vp_.y0 + int(p / vw_));
+  // Composites pixel p's fragments before z_limit; (X, Y): its image coordinates.
+  void composite_pixel(PixelRecord& px, uint32_t p, int X, int Y, float z_limit) {
+    if (comp_.batched())
+      comp_.composite_batched(px, p, ws_.pool, z_limit,
+                              in_.view.perspective() ? in_.view.ray_length_factor(double(X), double(Y)) : 1.0);
+    else
+      comp_.composite(px, ws_.pool, z_limit, X, Y);
   }
 
   void composite_all(float z_limit) {
     const auto t0 = timed_ ? Clock::now() : Clock::time_point{};
     size_t n = 0;
     for (uint32_t p : ws_.active) {
-      composite_pixel(p, z_limit);
-      if (ws_.px[p].head != kNil) ws_.active[n++] = p;
-      else ws_.px[p].active = 0;
+      PixelRecord& px = ws_.px[p];
+      composite_pixel(px, p, vp_.x0 + int(p % vw_), vp_.y0 + int(p / vw_), z_limit);
+      if (px.head != kNil) ws_.active[n++] = p;
+      else px.active = 0;
     }
     ws_.active.resize(n);
     if (timed_) S_.ms_composite += ms_between(t0, Clock::now());
+  }
+
+  // One fragment for pixel p at image coordinates (X, Y): the per-fragment
+  // path of the whole engine.
+  void add_fragment(uint32_t p, int X, int Y, float z, float s, uint32_t kind, float z_sweep) {
+    PixelRecord& px = ws_.px[p];
+    if (px.done) return;  // early-terminated: nothing behind matters
+    // Fragments this pixel holds before the sweep plane are final: composite
+    // them now, while the record is in cache.
+    if (px.head != kNil && ws_.pool.at(px.head).z < z_sweep) {
+      composite_pixel(px, p, X, Y, z_sweep);
+      if (px.done) return;
+    }
+    if (!ws_.pool.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep);
+    if (!px.active) {
+      px.active = 1;
+      ws_.active.push_back(p);
+    }
+    ++fragments_;
+    max_len_ = std::max<uint64_t>(max_len_, px.len);
+    if (rs_.max_list_length && px.len > rs_.max_list_length) {
+      ++S_.forced_composites;  // force this pixel's final fragments out now
+      composite_pixel(px, p, X, Y, z_sweep);
+    }
+  }
+
+  // Pool at its budget: composite everything already final (before the
+  // sweep plane) everywhere, then retry once.
+  [[gnu::noinline]] void insert_over_budget(PixelRecord& px, float z, float s, uint32_t kind, float z_sweep) {
+    ++S_.budget_flushes;
+    composite_all(z_sweep);
+    if (!ws_.pool.insert(px, z, s, kind))
+      throw std::runtime_error("memory budget too small: " + std::to_string(ws_.pool.live_fragments()) +
+                               " fragments (" + mib(ws_.pool.live_fragments() * sizeof(Fragment)) +
+                               ") must be pending at once in one tile of this view");
   }
 
   // Scan-converts one triangle inside the tile and inserts its fragments
   // (z_sweep: the depth before which every fragment is final).
   void project(const ScreenVertex tri[3], FaceClass fclass, float z_sweep) {
     // list_generation: per-face set-up (plane equations; B-Convert's edge
-    // and compact lists); scan_convert: the pixel loop.
+    // and compact lists); scan_convert: finding the pixels and interpolating
+    // depth and scalar there; insert: the pixel lists.
     const auto t0 = timed_ ? Clock::now() : Clock::time_point{};
     ScreenTriangle st;
     const bool ok = setup_triangle(tri, in_.view.perspective(), &st);
@@ -122,57 +166,46 @@ class TileSweep {
     }
     ++S_.faces_projected;
     if (rs_.face_area_stats) add_face_area(tri, st);
-    FaceFragments& frags = ws_.frags;
-    frags.clear();
+    FaceSpans& spans = ws_.spans;
+    spans.clear();
     ScanCounters sc;
     if (use_bconvert) {
       RowEndMisses re;
-      bconvert_scan(st, vp_, ws_.bscratch, frags, sc, &re);
+      bconvert_scan(st, vp_, ws_.bscratch, spans, sc, &re);
       for (int k = 0; k < 4; ++k) S_.row_end_misses[k] += re.count[k];
     } else if (rs_.scan == ScanStrategy::Span) {
-      scan_span(st, vp_, frags, sc);
+      scan_span(st, vp_, spans, sc);
     } else {
-      scan_bbox(st, vp_, frags, sc);
+      scan_bbox(st, vp_, spans, sc);
     }
     S_.pixel_tests += sc.pixel_tests;
     S_.pixel_hits += sc.pixel_hits;
     S_.pixel_misses += sc.pixel_misses;
-    auto t2 = timed_ ? Clock::now() : Clock::time_point{};
-    if (timed_) S_.ms_scan_convert += ms_between(t1, t2);
-    if (rs_.raster_only) return;
-
     const uint32_t kind = fclass == FaceClass::Entry ? kEntry : fclass == FaceClass::Exit ? kExit : kInterior;
-    for (size_t k = 0; k < frags.size(); ++k) {
-      const uint32_t p = uint32_t(frags.y[k] - vp_.y0) * vw_ + uint32_t(frags.x[k] - vp_.x0);
-      PixelRecord& px = ws_.px[p];
-      if (px.done) continue;  // early-terminated: nothing behind matters
-      // Fragments this pixel holds before the sweep plane are final: composite
-      // them now, while the record is in cache.
-      if (px.head != kNil && ws_.pool.at(px.head).z < z_sweep) composite_pixel(p, z_sweep);
-      if (px.done) continue;
-      const float z = float(frags.z[k] - in_.z_origin), s = float(frags.s[k]);
-      if (!ws_.pool.insert(px, z, s, kind)) {
-        // Pool at its budget: composite everything already final (before
-        // the sweep plane) everywhere, then retry once.
-        ++S_.budget_flushes;
-        composite_all(z_sweep);
-        if (!ws_.pool.insert(px, z, s, kind))
-          throw std::runtime_error("memory budget too small: " + std::to_string(ws_.pool.live_fragments()) +
-                                   " fragments (" + mib(ws_.pool.live_fragments() * sizeof(Fragment)) +
-                                   ") must be pending at once in one tile of this view");
-      }
-      if (!px.active) {
-        px.active = 1;
-        ws_.active.push_back(p);
-      }
-      ++S_.fragments;
-      if (px.len > S_.max_list_length) S_.max_list_length = px.len;
-      if (rs_.max_list_length && px.len > rs_.max_list_length) {
-        ++S_.forced_composites;  // force this pixel's final fragments out now
-        composite_pixel(p, z_sweep);
+    const double z_origin = in_.z_origin;
+    if (timed_ || rs_.raster_only) {
+      // The benchmarks' path: fragments first (timed as scan conversion), then insertion.
+      FaceFragments& frags = ws_.frags;
+      frags.clear();
+      expand_spans(st, spans, frags);
+      const auto t2 = timed_ ? Clock::now() : Clock::time_point{};
+      if (timed_) S_.ms_scan_convert += ms_between(t1, t2);
+      if (rs_.raster_only) return;
+      for (size_t k = 0; k < frags.size(); ++k)
+        add_fragment(uint32_t(frags.y[k] - vp_.y0) * vw_ + uint32_t(frags.x[k] - vp_.x0), frags.x[k], frags.y[k],
+                     float(frags.z[k] - z_origin), float(frags.s[k]), kind, z_sweep);
+      if (timed_) S_.ms_insert += ms_between(t2, Clock::now());
+      return;
+    }
+    // Renders: each fragment goes from its span to its list directly.
+    for (const RowSpan& r : spans.rows) {
+      const uint32_t row = uint32_t(r.y - vp_.y0) * vw_;
+      for (int32_t i = r.x0; i <= r.x1; ++i) {
+        double z, s;
+        st.attributes(double(i), double(r.y), &z, &s);
+        add_fragment(row + uint32_t(i - vp_.x0), i, r.y, float(z - z_origin), float(s), kind, z_sweep);
       }
     }
-    if (timed_) S_.ms_insert += ms_between(t2, Clock::now());
   }
 
   // Heron's formula on the screen edges (Eqs. 4.1-4.3) and the box area,
@@ -209,6 +242,7 @@ class TileSweep {
   RenderStats& S_;
   Compositor comp_;
   bool timed_;
+  uint64_t fragments_ = 0, max_len_ = 0;  // this tile's counts (kept out of S_ in the hot loop)
 };
 
 }  // namespace

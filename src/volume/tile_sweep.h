@@ -46,7 +46,8 @@ struct alignas(128) TileWorkspace {
   std::vector<PixelRecord> px;
   std::vector<uint32_t> active;  // pixels whose lists may be non-empty
   FragmentPool pool;
-  FaceFragments frags;
+  FaceSpans spans;
+  FaceFragments frags;  // the benchmarks' timed path only
   BConvertScratch bscratch;
   std::vector<float> out;  // the finished tile, RGBA
   std::unique_ptr<SegmentBatch> batch;  // exact integrator without early termination

@@ -108,6 +108,13 @@ TEST(CompactList, InvariantsOnAllSevenShapes) {
 
 using PixelSet = std::set<std::pair<int, int>>;
 
+// A face's fragments: its spans with depth and scalar at every pixel.
+FaceFragments fragments(const ScreenTriangle& st, const FaceSpans& spans) {
+  FaceFragments f;
+  expand_spans(st, spans, f);
+  return f;
+}
+
 PixelSet pixels(const FaceFragments& f) {
   PixelSet s;
   for (size_t k = 0; k < f.size(); ++k) s.insert({f.x[k], f.y[k]});
@@ -144,10 +151,11 @@ TEST(ScanStrategies, SpanEqualsBoundingBoxExactly) {
   for (const auto& t : random_triangles(4000, 11)) {
     ScreenTriangle st;
     if (!setup_triangle(t.data(), false, &st)) continue;
-    FaceFragments a, b;
+    FaceSpans sa, sb;
     ScanCounters ca, cb;
-    scan_bbox(st, vp, a, ca);
-    scan_span(st, vp, b, cb);
+    scan_bbox(st, vp, sa, ca);
+    scan_span(st, vp, sb, cb);
+    const FaceFragments a = fragments(st, sa), b = fragments(st, sb);
     ASSERT_EQ(a.size(), b.size());
     ASSERT_EQ(ca.pixel_hits, cb.pixel_hits);
     // Same pixels, same order (rows, then columns), same depth and scalar bits.
@@ -167,6 +175,49 @@ TEST(ScanStrategies, SpanEqualsBoundingBoxExactly) {
   EXPECT_LT(span_tests, bbox_tests / 2);
 }
 
+// The span ends are solved per edge and stepped to exactly: check them on
+// tile viewports away from the origin, triangles reaching far outside (up to
+// 1e7 pixels), nearly horizontal and vertical edges and long slivers — and
+// that the bounding box's hits are one run per row, the fact the spans rest on.
+TEST(ScanStrategies, SpanEqualsBoundingBoxOnTilesAndExtremes) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> shape(0, 4);
+  const Viewport tiles[] = {{64, 128, 128, 192}, {0, 0, 37, 53}, {300, 7, 301, 90}, {5, 9, 70, 10}};
+  uint64_t hits = 0;
+  for (int n = 0; n < 6000; ++n) {
+    const Viewport vp = tiles[n % 4];
+    const double cx = 0.5 * (vp.x0 + vp.x1), cy = 0.5 * (vp.y0 + vp.y1);
+    ScreenVertex v[3];
+    for (int k = 0; k < 3; ++k) {
+      double x = cx + 60 * u(rng), y = cy + 60 * u(rng);
+      switch (shape(rng)) {
+        case 0: x = cx + 1e7 * u(rng); break;                       // far out
+        case 1: y = v[0].y + 1e-9 * u(rng); break;                   // nearly horizontal edge
+        case 2: x = k > 0 ? v[0].x + 1e-12 * u(rng) : x; break;      // nearly vertical edge
+        case 3: x = std::round(x), y = std::round(y); break;         // on pixel centres
+        default: break;
+      }
+      v[k] = {x, y, 1.0 + 0.1 * k, 0.3 * k, uint32_t(3 * n + k)};
+    }
+    ScreenTriangle st;
+    if (!setup_triangle(v, false, &st)) continue;
+    FaceSpans sa, sb;
+    ScanCounters ca, cb;
+    scan_bbox(st, vp, sa, ca);
+    scan_span(st, vp, sb, cb);
+    ASSERT_EQ(sa.size(), sb.size()) << n;
+    for (size_t r = 0; r < sa.size(); ++r) {
+      ASSERT_EQ(sa.rows[r].y, sb.rows[r].y) << n;
+      ASSERT_EQ(sa.rows[r].x0, sb.rows[r].x0) << n;
+      ASSERT_EQ(sa.rows[r].x1, sb.rows[r].x1) << n;
+      if (r > 0) ASSERT_LT(sa.rows[r - 1].y, sa.rows[r].y) << "one run per row";
+    }
+    hits += ca.pixel_hits;
+  }
+  EXPECT_GT(hits, 100000u);
+}
+
 // Regression (delta-like at 512²): a sliver whose third vertex lies within
 // rounding of the opposite edge's line. Edge signs taken from that vertex made
 // the inside region an unbounded wedge; span then emitted whole rows.
@@ -177,10 +228,11 @@ TEST(ScanStrategies, SliverEdgeSignsFollowTheOrientation) {
   ScreenTriangle st;
   ASSERT_TRUE(setup_triangle(v, false, &st));
   const Viewport vp{0, 0, 512, 512};
-  FaceFragments a, b;
+  FaceSpans sa, sb;
   ScanCounters ca, cb;
-  scan_bbox(st, vp, a, ca);
-  scan_span(st, vp, b, cb);
+  scan_bbox(st, vp, sa, ca);
+  scan_span(st, vp, sb, cb);
+  const FaceFragments a = fragments(st, sa), b = fragments(st, sb);
   EXPECT_EQ(a.size(), b.size());
   EXPECT_LE(b.size(), 4u);
   for (int i = 0; i < 512; i += 7) EXPECT_FALSE(st.inside(i, 221) && (i < 158 || i > 163)) << i;
@@ -195,11 +247,12 @@ TEST(ScanStrategies, BConvertCandidatesAreASubsetOfTheBoundingBox) {
     for (const auto& t : random_triangles(2000, 5)) {
       ScreenTriangle st;
       if (!setup_triangle(t.data(), false, &st)) continue;
-      FaceFragments a, b;
+      FaceSpans sa, sb;
       ScanCounters ca, cb;
-      scan_bbox(st, vp, a, ca);
+      scan_bbox(st, vp, sa, ca);
       ASSERT_TRUE(bconvert_list(t.data(), v, vp, s));
-      bconvert_scan(st, vp, s, b, cb, nullptr);
+      bconvert_scan(st, vp, s, sb, cb, nullptr);
+      const FaceFragments a = fragments(st, sa), b = fragments(st, sb);
       const PixelSet pa = pixels(a), pb = pixels(b);
       for (const auto& p : pb) ASSERT_TRUE(pa.count(p)) << to_string(v);
       ASSERT_EQ(cb.pixel_misses, cb.pixel_tests - cb.pixel_hits);
