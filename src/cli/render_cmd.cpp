@@ -57,6 +57,7 @@ void write_stats(const std::string& path, const RenderStats& S, const Scene& sce
       {"segments", S.segments},
       {"early_terminated_pixels", S.early_terminated_pixels},
       {"peak_fragments", S.peak_fragments},
+      {"peak_overflow_fragments", S.peak_overflow_fragments},
       {"peak_rss_bytes", S.peak_rss_bytes},
       {"memory_budget_bytes", S.memory_budget_bytes},
       {"mesh", {{"points", m.num_points()}, {"tets", m.num_tets()}}},

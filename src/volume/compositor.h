@@ -33,47 +33,42 @@ class Compositor {
 
   // Composites the fragments of the pixel at image coordinates (X, Y) with
   // depth < z_limit (all if z_limit is +inf), freeing them.
-  void composite(PixelRecord& px, FragmentPool& pool, float z_limit, int X, int Y);
+  void composite(PixelRecord& px, PixelLists& lists, float z_limit, int X, int Y);
   // The same on the batched path (batched() true): segments are queued under
   // `pixel` (px = records[pixel]); len_factor: ray length per unit depth.
   // Inline: it runs for most fragments.
   bool batched() const { return batch_ != nullptr; }
-  void composite_batched(PixelRecord& px, uint32_t pixel, FragmentPool& pool, float z_limit, double len_factor) {
-    uint32_t head = px.head, popped = 0;
-    while (head != kNil) {
-      const Fragment& f = pool.at(head);
-      if (!(f.z < z_limit)) break;
-      if (px.inside > 0 && f.z > px.last_z) {
-        if (batch_->full()) batch_->flush(records_);
-        batch_->push(pixel, px.last_s, f.s, double(f.z - px.last_z) * len_factor);
-        ++segments_;
+  void composite_batched(PixelRecord& px, uint32_t pixel, PixelLists& lists, float z_limit, double len_factor) {
+    for (;;) {
+      const int n = px.n;
+      int i = 0;
+      for (; i < n && px.z[i] < z_limit; ++i) {
+        const float z = px.z[i];
+        if (px.inside > 0 && z > px.last_z) {
+          if (batch_->full()) batch_->flush(records_);
+          batch_->push(pixel, px.last_s, px.s[i], double(z - px.last_z) * len_factor);
+          ++segments_;
+        }
+        step_past(px, z, px.s[i], px.kind[i]);
       }
-      step_past(px, f);
-      const uint32_t next = f.next;
-      pool.release(head);
-      head = next;
-      ++popped;
-    }
-    px.head = head;
-    if (head == kNil) {
-      px.tail = kNil;
-      px.len = 0;
-    } else if (px.len != UINT16_MAX) {
-      px.len = uint16_t(px.len - popped);  // once saturated, stays so until empty
+      if (i == 0) return;
+      lists.drop_front(px, i);
+      // Everything inline was final: go on with what moved up from the overflow.
+      if (i < n || px.n == 0) return;
     }
   }
 
   // After a fragment: the inside count and where the next segment starts.
-  static void step_past(PixelRecord& px, const Fragment& f) {
-    if (f.kind == kEntry) {
+  static void step_past(PixelRecord& px, float z, float s, uint32_t kind) {
+    if (kind == kEntry) {
       if (px.inside < INT16_MAX) ++px.inside;
-    } else if (f.kind == kExit) {
+    } else if (kind == kExit) {
       // Clamped: an exit with no matching entry (a ray grazing a silhouette
       // vertex or edge, which has zero length inside) must not go negative.
       if (px.inside > 0) --px.inside;
     }
-    px.last_z = f.z;
-    px.last_s = f.s;
+    px.last_z = z;
+    px.last_s = s;
   }
 
   uint64_t segments() const { return segments_; }

@@ -1,14 +1,20 @@
-// Per-pixel depth-sorted fragment lists (digest §1.1 stage 2) in one pooled
-// array per tile (no allocation per fragment): singly linked, with a tail
-// index so that the sweep's common case — a fragment deeper than everything
-// already listed — appends in O(1). Freed fragments go to a free list, which
-// hands the most recently freed (cache-hot) slot out first.
+// Per-pixel depth-sorted fragment lists (digest §1.1 stage 2). The sweep
+// composites a pixel's final fragments whenever a new one arrives there
+// (tile_sweep.h), so a pixel rarely holds more than the few faces crossing
+// the sweep plane at once (at most 3–4 on the benchmark meshes). The first
+// kInline pending fragments therefore live in the pixel's own record, sorted;
+// deeper ones overflow into a pooled, singly linked, sorted list per tile (no
+// allocation per fragment; a free list hands out the most recently freed,
+// cache-hot slot first), and move up as the front ones are composited.
 //
-// Everything the engine keeps for a pixel — list ends, inside count and the
-// compositing accumulators — sits in one 64-byte record, so touching a pixel
-// costs one cache line, and a tile's records (64² · 64 B = 256 KiB) stay in L2.
+// A record is two cache lines: the first holds everything the sweep touches
+// per fragment (the inline fragments, the overflow list ends, the inside count
+// and the previous fragment), the second the compositing accumulators, which
+// only SegmentBatch::flush and the compositor write. A 64² tile's records are
+// 512 KiB and stay in L2.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -20,7 +26,7 @@ namespace zs {
 // wrong way round and the entry's scalar starts the next segment.
 enum FragmentKind : uint32_t { kExit = 0, kInterior = 1, kEntry = 2 };
 
-struct Fragment {  // 16 bytes
+struct Fragment {  // 16 bytes: an overflow list entry
   float z;         // view depth minus the view's depth origin
   float s;         // scalar
   uint32_t next;   // pool index, kNil at the end
@@ -28,102 +34,125 @@ struct Fragment {  // 16 bytes
 };
 
 constexpr uint32_t kNil = UINT32_MAX;
+constexpr int kInline = 4;
 
 struct alignas(64) PixelRecord {
-  double rgb[3];        // premultiplied colour so far, front to back
-  double T;             // transmittance so far
-  double last_L;        // the previous fragment's SegmentEnd (ln(1 - a))...
-  float last_z, last_s; // ...its depth and scalar: where the next segment starts
-  uint32_t head, tail;  // fragment list, kNil when empty
-  int16_t inside;       // entries minus exits (compositor.h), saturating
-  int16_t last_k;       // ...and its transfer-function interval
-  uint16_t len;         // list length, saturating at 65535
-  uint8_t done;         // early-terminated: nothing behind matters
-  uint8_t active;       // listed in the tile's active pixels
+  // Line 1: pending fragments, shallowest first. z[0] is +inf when there are none,
+  // so "has a fragment before z" is one compare.
+  float z[kInline];
+  float s[kInline];
+  uint8_t kind[kInline];
+  uint8_t n;              // inline fragments; the overflow list is empty unless n == kInline
+  uint8_t done;           // early-terminated: nothing behind matters
+  uint8_t active;         // listed in the tile's active pixels
+  int16_t inside;         // entries minus exits (compositor.h), saturating
+  uint16_t len;           // pending fragments in all, saturating at 65535
+  float last_z, last_s;   // the previous fragment: where the next segment starts
+  uint32_t head, tail;    // overflow list, kNil when empty
+  // Line 2: premultiplied colour and transmittance so far, front to back.
+  alignas(64) double rgb[3];
+  double T;
   void reset() {
-    rgb[0] = rgb[1] = rgb[2] = 0;
-    T = 1;
-    last_L = 0;
+    z[0] = INFINITY;
+    n = done = active = 0;
+    inside = 0;
+    len = 0;
     last_z = last_s = 0;
     head = tail = kNil;
-    inside = 0;
-    last_k = 0;
-    len = 0;
-    done = active = 0;
+    rgb[0] = rgb[1] = rgb[2] = 0;
+    T = 1;
   }
 };
-static_assert(sizeof(PixelRecord) == 64, "one cache line per pixel");
+static_assert(sizeof(PixelRecord) == 128, "two cache lines per pixel");
 
-class FragmentPool {
+class PixelLists {
  public:
-  // max_fragments bounds the pool (the memory budget); it grows on demand.
-  void reset(size_t max_fragments);
+  // max_overflow bounds the overflow pool (the memory budget); it grows on demand.
+  void reset(size_t max_overflow);
 
-  // False when the pool is at its bound (the caller composites and retries).
-  // Inline: once per fragment.
+  // False when the fragment needs an overflow slot and the pool is at its
+  // bound (the caller composites and retries). Inline: once per fragment.
   bool insert(PixelRecord& px, float z, float s, uint32_t kind) {
-    uint32_t idx = free_;
-    if (idx != kNil) {
-      free_ = data_[idx].next;
+    int p = px.n;
+    if (p == kInline) {
+      // Full: the fragment, or the deepest inline one, goes to the overflow list.
+      if (before(px.z[kInline - 1], px.kind[kInline - 1], z, kind)) {
+        if (!overflow_insert(px, z, s, kind)) return false;
+        return count_in(px);
+      }
+      if (!overflow_push_front(px, px.z[kInline - 1], px.s[kInline - 1], px.kind[kInline - 1])) return false;
+      p = kInline - 1;
     } else {
-      if (used_ == cap_ && !grow()) return false;
-      idx = uint32_t(used_++);
+      ++px.n;
     }
-    Fragment& f = data_[idx];
-    f.z = z;
-    f.s = s;
-    f.kind = kind;
-    if (++live_ > peak_) peak_ = live_;
+    // Sorted insertion from the back: the sweep's common case appends.
+    while (p > 0 && !before(px.z[p - 1], px.kind[p - 1], z, kind)) {
+      px.z[p] = px.z[p - 1];
+      px.s[p] = px.s[p - 1];
+      px.kind[p] = px.kind[p - 1];
+      --p;
+    }
+    px.z[p] = z;
+    px.s[p] = s;
+    px.kind[p] = uint8_t(kind);
+    return count_in(px);
+  }
+
+  // Removes the first k (<= n) inline fragments and moves overflow ones up.
+  void drop_front(PixelRecord& px, int k) {
+    const int n = px.n;
+    for (int i = k; i < n; ++i) {
+      px.z[i - k] = px.z[i];
+      px.s[i - k] = px.s[i];
+      px.kind[i - k] = px.kind[i];
+    }
+    px.n = uint8_t(n - k);
+    live_ -= size_t(k);
+    if (px.head != kNil) refill(px);
+    if (px.n == 0) {
+      px.z[0] = INFINITY;
+      px.len = 0;
+    } else if (px.len != UINT16_MAX) {
+      px.len = uint16_t(px.len - k);  // once saturated, stays so until empty
+    }
+  }
+  void clear(PixelRecord& px) {
+    while (px.n > 0) drop_front(px, px.n);
+  }
+
+  size_t live_fragments() const { return live_; }     // pending, inline and overflow
+  size_t peak_fragments() const { return peak_; }
+  size_t overflow_fragments() const { return overflow_live_; }
+  size_t peak_overflow_fragments() const { return overflow_peak_; }
+  size_t max_overflow() const { return max_; }
+
+ private:
+  // a (za, ka) comes before a new fragment (z, kind): see FragmentKind.
+  static bool before(float za, uint32_t ka, float z, uint32_t kind) { return za < z || (za == z && ka <= kind); }
+  bool count_in(PixelRecord& px) {
     if (px.len != UINT16_MAX) ++px.len;
-    if (px.head == kNil) {
-      f.next = kNil;
-      px.head = px.tail = idx;
-      return true;
-    }
-    if (before(data_[px.tail], z, kind)) {  // the sweep's common case
-      f.next = kNil;
-      data_[px.tail].next = idx;
-      px.tail = idx;
-      return true;
-    }
-    if (!before(data_[px.head], z, kind)) {
-      f.next = px.head;
-      px.head = idx;
-      return true;
-    }
-    uint32_t p = px.head;
-    while (before(data_[data_[p].next], z, kind)) p = data_[p].next;
-    f.next = data_[p].next;
-    data_[p].next = idx;
+    if (++live_ > peak_) peak_ = live_;
     return true;
   }
-  const Fragment& at(uint32_t idx) const { return data_[idx]; }
-  // Returns a fragment already unlinked from its list to the free list.
+  bool alloc(uint32_t* idx) {
+    if (free_ != kNil) {
+      *idx = free_;
+      free_ = data_[free_].next;
+    } else {
+      if (used_ == cap_ && !grow()) return false;
+      *idx = uint32_t(used_++);
+    }
+    if (++overflow_live_ > overflow_peak_) overflow_peak_ = overflow_live_;
+    return true;
+  }
   void release(uint32_t idx) {
     data_[idx].next = free_;
     free_ = idx;
-    --live_;
+    --overflow_live_;
   }
-  // Removes and frees the first fragment of a non-empty list.
-  void pop_front(PixelRecord& px) {
-    const uint32_t idx = px.head;
-    px.head = data_[idx].next;
-    if (px.head == kNil) px.tail = kNil;
-    release(idx);
-    if (px.head == kNil) px.len = 0;
-    else if (px.len != UINT16_MAX) --px.len;  // once saturated, stays so until empty
-  }
-  void clear(PixelRecord& px) {
-    while (px.head != kNil) pop_front(px);
-  }
-
-  size_t live_fragments() const { return live_; }
-  size_t peak_fragments() const { return peak_; }
-  size_t max_fragments() const { return max_; }
-
- private:
-  // Order among fragments at the same depth: see FragmentKind.
-  static bool before(const Fragment& a, float z, uint32_t kind) { return a.z < z || (a.z == z && a.kind <= kind); }
+  bool overflow_insert(PixelRecord& px, float z, float s, uint32_t kind);
+  bool overflow_push_front(PixelRecord& px, float z, float s, uint32_t kind);
+  void refill(PixelRecord& px);
   bool grow();  // more slots, up to max_; false at the bound
 
   std::vector<Fragment> storage_;  // slots [0, used_) have been handed out
@@ -131,6 +160,7 @@ class FragmentPool {
   size_t cap_ = 0, used_ = 0;
   uint32_t free_ = kNil;
   size_t max_ = 0, live_ = 0, peak_ = 0;
+  size_t overflow_live_ = 0, overflow_peak_ = 0;
 };
 
 }  // namespace zs

@@ -36,7 +36,7 @@ class TileSweep {
               batch_for(in, ws), prepare(ws, size_t(vw_) * uint32_t(vp.y1 - vp.y0))),
         timed_(rs_.phase_times) {
     ws.active.clear();
-    ws.pool.reset(max_fragments);
+    ws.lists.reset(max_fragments);
   }
 
   // Exact integration without early termination is deferred and batched.
@@ -79,7 +79,8 @@ class TileSweep {
     S_.max_list_length = std::max(S_.max_list_length, max_len_);
     S_.segments += comp_.segments();
     S_.early_terminated_pixels += comp_.terminated_pixels();
-    S_.peak_fragments = std::max<uint64_t>(S_.peak_fragments, ws_.pool.peak_fragments());
+    S_.peak_fragments = std::max<uint64_t>(S_.peak_fragments, ws_.lists.peak_fragments());
+    S_.peak_overflow_fragments = std::max<uint64_t>(S_.peak_overflow_fragments, ws_.lists.peak_overflow_fragments());
     finish();
   }
 
@@ -87,10 +88,10 @@ class TileSweep {
   // Composites pixel p's fragments before z_limit; (X, Y): its image coordinates.
   void composite_pixel(PixelRecord& px, uint32_t p, int X, int Y, float z_limit) {
     if (comp_.batched())
-      comp_.composite_batched(px, p, ws_.pool, z_limit,
+      comp_.composite_batched(px, p, ws_.lists, z_limit,
                               in_.view.perspective() ? in_.view.ray_length_factor(double(X), double(Y)) : 1.0);
     else
-      comp_.composite(px, ws_.pool, z_limit, X, Y);
+      comp_.composite(px, ws_.lists, z_limit, X, Y);
   }
 
   void composite_all(float z_limit) {
@@ -99,7 +100,7 @@ class TileSweep {
     for (uint32_t p : ws_.active) {
       PixelRecord& px = ws_.px[p];
       composite_pixel(px, p, vp_.x0 + int(p % vw_), vp_.y0 + int(p / vw_), z_limit);
-      if (px.head != kNil) ws_.active[n++] = p;
+      if (px.n > 0) ws_.active[n++] = p;
       else px.active = 0;
     }
     ws_.active.resize(n);
@@ -113,11 +114,11 @@ class TileSweep {
     if (px.done) return;  // early-terminated: nothing behind matters
     // Fragments this pixel holds before the sweep plane are final: composite
     // them now, while the record is in cache.
-    if (px.head != kNil && ws_.pool.at(px.head).z < z_sweep) {
+    if (px.z[0] < z_sweep) {
       composite_pixel(px, p, X, Y, z_sweep);
       if (px.done) return;
     }
-    if (!ws_.pool.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep);
+    if (!ws_.lists.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep);
     if (!px.active) {
       px.active = 1;
       ws_.active.push_back(p);
@@ -130,15 +131,15 @@ class TileSweep {
     }
   }
 
-  // Pool at its budget: composite everything already final (before the
+  // Overflow pool at its budget: composite everything already final (before the
   // sweep plane) everywhere, then retry once.
   [[gnu::noinline]] void insert_over_budget(PixelRecord& px, float z, float s, uint32_t kind, float z_sweep) {
     ++S_.budget_flushes;
     composite_all(z_sweep);
-    if (!ws_.pool.insert(px, z, s, kind))
-      throw std::runtime_error("memory budget too small: " + std::to_string(ws_.pool.live_fragments()) +
-                               " fragments (" + mib(ws_.pool.live_fragments() * sizeof(Fragment)) +
-                               ") must be pending at once in one tile of this view");
+    if (!ws_.lists.insert(px, z, s, kind))
+      throw std::runtime_error("memory budget too small: " + std::to_string(ws_.lists.live_fragments()) +
+                               " fragments (" + mib(ws_.lists.overflow_fragments() * sizeof(Fragment)) +
+                               " beyond the pixel records) must be pending at once in one tile of this view");
   }
 
   // Scan-converts one triangle inside the tile and inserts its fragments

@@ -45,7 +45,7 @@ struct SweepShared {
 struct alignas(128) TileWorkspace {
   std::vector<PixelRecord> px;
   std::vector<uint32_t> active;  // pixels whose lists may be non-empty
-  FragmentPool pool;
+  PixelLists lists;
   FaceSpans spans;
   FaceFragments frags;  // the benchmarks' timed path only
   BConvertScratch bscratch;

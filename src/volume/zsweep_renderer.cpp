@@ -63,6 +63,7 @@ void add_stats(RenderStats& a, const RenderStats& b) {
   a.segments += b.segments;
   a.early_terminated_pixels += b.early_terminated_pixels;
   a.peak_fragments = std::max(a.peak_fragments, b.peak_fragments);  // per tile
+  a.peak_overflow_fragments = std::max(a.peak_overflow_fragments, b.peak_overflow_fragments);
   a.bconvert_fallbacks += b.bconvert_fallbacks;
   for (int k = 0; k < 4; ++k) a.row_end_misses[k] += b.row_end_misses[k];
   a.face_area += b.face_area;

@@ -34,7 +34,9 @@ struct RenderStats {
   uint64_t max_list_length = 0, forced_composites = 0, budget_flushes = 0;
   uint64_t composite_events = 0, segments = 0, early_terminated_pixels = 0;
   uint64_t peak_fragments = 0, peak_rss_bytes = 0, memory_budget_bytes = 0;
-  uint64_t tiles = 0, tile_size = 0, bin_entries = 0, fragment_capacity = 0;  // the plan used
+  uint64_t peak_overflow_fragments = 0;  // of peak_fragments, the most beyond the records' inline slots
+  uint64_t tiles = 0, tile_size = 0, bin_entries = 0;  // the plan used
+  uint64_t fragment_capacity = 0;  // overflow fragments per thread the budget allows
   uint64_t bconvert_fallbacks = 0;  // faces too large for B-Convert, scanned by bounding box
   uint64_t row_end_misses[4] = {0, 0, 0, 0};  // B-Convert rows ends with 0, 1, 2, 3+ false pixels
   double face_area = 0, bbox_area = 0;        // summed over projected faces, in pixels (Table 4.4)
@@ -102,9 +104,10 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
 uint64_t default_memory_budget();
 uint64_t peak_rss_bytes();
 
-// Per-pixel bytes of a tile in flight (pixel record plus its output), the
-// bytes the plan charges per vertex, face and bin entry; fragments are 16 bytes.
-constexpr uint64_t kTilePixelBytes = 64 + 16;
+// Per-pixel bytes of a tile in flight (pixel record, with its first
+// kInline fragments, plus its output), the bytes the plan charges per vertex,
+// face and bin entry; overflow fragments are 16 bytes.
+constexpr uint64_t kTilePixelBytes = 128 + 16;
 uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces);
 
 // How a render fits its budget: shared state (vertices, faces, bins, sink),

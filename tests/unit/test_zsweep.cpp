@@ -63,7 +63,7 @@ TEST(ZSweep, ConstantDensityBoxPerspectiveMatchesClosedForm) {
 TEST(ZSweep, LinearScalarMatchesQuadratureWithExactIntegrator) {
   const glm::dvec3 lo{-1.0, -0.8, -0.6}, hi{1.0, 0.8, 0.6};
   auto field = [](const glm::dvec3& p) { return 0.5 + 0.22 * p.x + 0.15 * p.y - 0.2 * p.z; };
-  const TetMesh m = box_mesh({5, 4, 3}, lo, hi, field);
+  const TetMesh m = box_mesh({1, 1, 3}, lo, hi, field);
   TransferFunction tf({{0.0, 0.1, 0.1, 0.9}, {0.35, 0.1, 0.9, 0.3}, {0.55, 0.9, 0.9, 0.1}, {1.0, 0.9, 0.1, 0.1}},
                       {{0.0, 0.0}, {0.3, 0.05}, {0.45, 0.9}, {0.55, 0.1}, {0.7, 0.6}, {1.0, 0.2}}, 0.5);
   const uint32_t W = 80, H = 60;
@@ -150,41 +150,42 @@ TEST(ZSweep, InvisibleTetsAreCulledExactly) {
 TEST(ZSweep, MaxListLengthAndBudgetDoNotChangeTheImage) {
   const glm::dvec3 lo{-1, -1, -1}, hi{1, 1, 1};
   auto field = [](const glm::dvec3& p) { return 0.5 + 0.3 * p.x * p.y + 0.2 * p.z; };
-  const TetMesh m = box_mesh({6, 6, 6}, lo, hi, field);
+  // Long cells: each swept vertex projects faces reaching far behind the
+  // sweep plane, so pixels hold more pending fragments than their records'
+  // inline slots and the overflow pool (the budgeted part) is used.
+  const TetMesh m = box_mesh({1, 1, 3}, lo, hi, field);
   TransferFunction tf({{0, 0.9, 0.3, 0.1}, {1, 0.1, 0.4, 0.9}}, {{0.0, 0.1}, {1.0, 0.7}}, 0.7);
   RenderSettings rs = settings(64, 64, Projection::Perspective, tf);
   RenderStats s0, s1, s2;
   const Image a = render(m, rs, &s0);
+  ASSERT_GT(s0.peak_overflow_fragments, 0u) << "the scene must overflow the inline slots";
+  EXPECT_GT(s0.peak_fragments, s0.peak_overflow_fragments);
   rs.max_list_length = 2;
   const Image b = render(m, rs, &s1);
   rs.max_list_length = 0;
-  // The largest budget whose fragment pool holds 3/4 of the unbounded peak
-  // (tile state and shared state come first).
-  const Topology topo = build_topology(m);
-  auto capacity = [&](uint64_t budget) {
-    RenderSettings b = rs;
-    b.memory_budget_bytes = budget;
-    return ZSweepRenderer(m, topo, b, 64 * 64 * 16).setup_stats().fragment_capacity;
-  };
-  uint64_t blo = 1 << 16, bhi = 1 << 24;  // capacity(blo) throws or is tiny; capacity(bhi) is ample
-  while (bhi - blo > 64) {
+  // The smallest budget that still renders (the pending fragments that are
+  // not yet final must fit): below the unbounded peak, so the pool fills and
+  // final fragments are composited early to make room.
+  uint64_t blo = 1 << 16, bhi = 1 << 24;  // blo fails, bhi is ample
+  Image c;
+  while (bhi - blo > 16) {
     const uint64_t mid = (blo + bhi) / 2;
-    bool fits = false;
+    rs.memory_budget_bytes = mid;
     try {
-      fits = capacity(mid) <= s0.peak_fragments * 3 / 4;
+      RenderStats st;
+      Image img = render(m, rs, &st);
+      bhi = mid;
+      c = std::move(img);
+      s2 = st;
     } catch (const std::runtime_error&) {
-      fits = true;  // too small for anything: go up
+      blo = mid;
     }
-    (fits ? blo : bhi) = mid;
   }
-  const uint64_t budget = blo;
-  ASSERT_GT(capacity(budget), 0u);
-  rs.memory_budget_bytes = budget;
-  const Image c = render(m, rs, &s2);
+  ASSERT_FALSE(c.rgba.empty());
   EXPECT_GT(s1.forced_composites, 0u);
   EXPECT_GT(s2.budget_flushes, 0u);
-  EXPECT_LE(s2.peak_fragments, s2.fragment_capacity);
-  EXPECT_LE(s2.fragment_capacity, s0.peak_fragments * 3 / 4);
+  EXPECT_LE(s2.peak_overflow_fragments, s2.fragment_capacity);
+  EXPECT_LT(s2.fragment_capacity, s0.peak_overflow_fragments);
   for (size_t k = 0; k < a.rgba.size(); ++k) {
     ASSERT_EQ(a.rgba[k], b.rgba[k]) << k;
     ASSERT_EQ(a.rgba[k], c.rgba[k]) << k;
@@ -196,7 +197,7 @@ TEST(ZSweep, MaxListLengthAndBudgetDoNotChangeTheImage) {
 TEST(ZSweep, EarlyTerminationStaysWithinItsBound) {
   const glm::dvec3 lo{-1, -1, -1}, hi{1, 1, 1};
   auto field = [](const glm::dvec3& p) { return 0.5 + 0.4 * p.z; };
-  const TetMesh m = box_mesh({5, 5, 5}, lo, hi, field);
+  const TetMesh m = box_mesh({1, 1, 3}, lo, hi, field);
   TransferFunction tf({{0, 1, 1, 0.2}, {1, 0.2, 0.3, 1}}, {{0.0, 0.6}, {1.0, 0.95}}, 0.3);
   RenderSettings rs = settings(48, 40, Projection::Orthographic, tf);
   const Image full = render(m, rs);
