@@ -5,7 +5,7 @@
 // main binary loads libhwy through OpenImageIO, whose start-up uses an
 // instruction valgrind 3.19 cannot decode).
 //
-//   zsweep_frame MESH.off [size=512] [frames=3] [threads=1] [scan=span]
+//   zsweep_frame MESH.off [size=512] [frames=3] [threads=1] [scan=span] [tile=64]
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -19,7 +19,7 @@
 int main(int argc, char** argv) {
   using namespace zs;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: zsweep_frame MESH.off [size] [frames] [threads] [scan]\n");
+    std::fprintf(stderr, "usage: zsweep_frame MESH.off [size] [frames] [threads] [scan] [tile]\n");
     return 2;
   }
   try {
@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     rs.width = rs.height = size;
     rs.threads = argc > 4 ? std::atoi(argv[4]) : 1;
     if (!parse_scan_strategy(argc > 5 ? argv[5] : "span", &rs.scan)) throw std::runtime_error("unknown scan");
+    if (argc > 6) rs.tile_size = uint32_t(std::atoi(argv[6]));
     rs.camera = auto_camera(mesh, Projection::Orthographic, size, size);
     rs.tf = default_transfer_function(mesh);
     const Topology topo = build_topology(mesh);
@@ -43,8 +44,8 @@ int main(int argc, char** argv) {
       Discard sink;
       RenderStats st;
       render_zsweep_tiles(mesh, topo, rs, sink, 0, &st);
-      std::printf("frame %d: %.2f ms (setup %.2f), %llu fragments, %llu segments, checksum %.9g\n", f, st.ms_total,
-                  st.ms_setup, (unsigned long long)st.fragments, (unsigned long long)st.segments, sink.sum);
+      std::printf("frame %d: %.2f ms (setup %.2f: order %.2f, bins %.2f), %llu fragments, %llu segments, checksum %.9g\n", f, st.ms_total,
+                  st.ms_setup, st.ms_order, st.ms_binning, (unsigned long long)st.fragments, (unsigned long long)st.segments, sink.sum);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "zsweep_frame: %s\n", e.what());

@@ -18,7 +18,7 @@ void Compositor::composite(PixelRecord& px, PixelLists& lists, float z_limit, in
   // termination or the approximate integrators.
   while (px.n > 0 && px.z[0] < z_limit) {
     const float z = px.z[0], s = px.s[0];
-    const uint32_t kind = px.kind[0];
+    const uint32_t kind = px.kind(0);
     lists.drop_front(px, 1);
     if (px.inside > 0 && z > px.last_z) {
       const SegmentLight seg = integ_.integrate(px.last_s, integ_.end(px.last_s), s, integ_.end(s),

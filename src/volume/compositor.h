@@ -49,7 +49,7 @@ class Compositor {
           batch_->push(pixel, px.last_s, px.s[i], double(z - px.last_z) * len_factor);
           ++segments_;
         }
-        step_past(px, z, px.s[i], px.kind[i]);
+        step_past(px, z, px.s[i], px.kind(i));
       }
       if (i == 0) return;
       lists.drop_front(px, i);

@@ -22,6 +22,35 @@ bool PixelLists::grow() {
   return true;
 }
 
+bool PixelLists::insert_sorted(PixelRecord& px, float z, float s, uint32_t kind) {
+  int p = px.n;
+  if (p == kInline) {
+    // Full: the fragment, or the deepest inline one, goes to the overflow list.
+    if (before(px.z[kInline - 1], px.kind(kInline - 1), z, kind)) {
+      if (!overflow_insert(px, z, s, kind)) return false;
+      if (px.len != UINT16_MAX) ++px.len;
+      return true;
+    }
+    if (!overflow_push_front(px, px.z[kInline - 1], px.s[kInline - 1], px.kind(kInline - 1))) return false;
+    p = kInline - 1;
+  } else {
+    ++px.n;
+  }
+  // Sorted insertion from the back.
+  while (p > 0 && !before(px.z[p - 1], px.kind(p - 1), z, kind)) {
+    px.z[p] = px.z[p - 1];
+    px.s[p] = px.s[p - 1];
+    --p;
+  }
+  px.z[p] = z;
+  px.s[p] = s;
+  // Kinds at and above p move up one slot (the one past the end drops out).
+  const uint32_t low = (1u << (2 * p)) - 1;
+  px.kinds = uint16_t(((px.kinds & low) | ((px.kinds & ~low) << 2) | (kind << (2 * p))) & 0xffu);
+  if (px.len != UINT16_MAX) ++px.len;
+  return true;
+}
+
 bool PixelLists::overflow_insert(PixelRecord& px, float z, float s, uint32_t kind) {
   uint32_t idx;
   if (!alloc(&idx)) return false;
@@ -63,7 +92,7 @@ void PixelLists::refill(PixelRecord& px) {
     const Fragment& f = data_[idx];
     px.z[px.n] = f.z;
     px.s[px.n] = f.s;
-    px.kind[px.n] = uint8_t(f.kind);
+    px.kinds = uint16_t(px.kinds | (f.kind << (2 * px.n)));
     ++px.n;
     px.head = f.next;
     release(idx);

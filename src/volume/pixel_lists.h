@@ -36,15 +36,17 @@ struct Fragment {  // 16 bytes: an overflow list entry
 constexpr uint32_t kNil = UINT32_MAX;
 constexpr int kInline = 4;
 
+// No field is a character type: stores through those may alias anything and
+// would make the compiler reload every member and pointer of the hot loops.
 struct alignas(64) PixelRecord {
   // Line 1: pending fragments, shallowest first. z[0] is +inf when there are none,
   // so "has a fragment before z" is one compare.
   float z[kInline];
   float s[kInline];
-  uint8_t kind[kInline];
-  uint8_t n;              // inline fragments; the overflow list is empty unless n == kInline
-  uint8_t done;           // early-terminated: nothing behind matters
-  uint8_t active;         // listed in the tile's active pixels
+  uint16_t kinds;         // FragmentKind of inline slot i in bits 2i, 2i+1
+  uint16_t n;             // inline fragments; the overflow list is empty unless n == kInline
+  uint16_t done;          // early-terminated: nothing behind matters
+  uint16_t active;        // listed in the tile's active pixels
   int16_t inside;         // entries minus exits (compositor.h), saturating
   uint16_t len;           // pending fragments in all, saturating at 65535
   float last_z, last_s;   // the previous fragment: where the next segment starts
@@ -52,8 +54,10 @@ struct alignas(64) PixelRecord {
   // Line 2: premultiplied colour and transmittance so far, front to back.
   alignas(64) double rgb[3];
   double T;
+  uint32_t kind(int i) const { return (kinds >> (2 * i)) & 3u; }
   void reset() {
     z[0] = INFINITY;
+    kinds = 0;
     n = done = active = 0;
     inside = 0;
     len = 0;
@@ -71,31 +75,24 @@ class PixelLists {
   void reset(size_t max_overflow);
 
   // False when the fragment needs an overflow slot and the pool is at its
-  // bound (the caller composites and retries). Inline: once per fragment.
+  // bound (the caller composites and retries). The caller counts successful
+  // inserts into add_live() (once per face, off the per-fragment path).
   bool insert(PixelRecord& px, float z, float s, uint32_t kind) {
-    int p = px.n;
-    if (p == kInline) {
-      // Full: the fragment, or the deepest inline one, goes to the overflow list.
-      if (before(px.z[kInline - 1], px.kind[kInline - 1], z, kind)) {
-        if (!overflow_insert(px, z, s, kind)) return false;
-        return count_in(px);
-      }
-      if (!overflow_push_front(px, px.z[kInline - 1], px.s[kInline - 1], px.kind[kInline - 1])) return false;
-      p = kInline - 1;
-    } else {
-      ++px.n;
+    const int n = px.n;
+    // The sweep's common case: deeper than everything listed, and room inline.
+    if (n < kInline && (n == 0 || px.z[n - 1] < z)) {
+      px.z[n] = z;
+      px.s[n] = s;
+      px.kinds = uint16_t(px.kinds | (kind << (2 * n)));
+      px.n = uint16_t(n + 1);
+      if (px.len != UINT16_MAX) ++px.len;
+      return true;
     }
-    // Sorted insertion from the back: the sweep's common case appends.
-    while (p > 0 && !before(px.z[p - 1], px.kind[p - 1], z, kind)) {
-      px.z[p] = px.z[p - 1];
-      px.s[p] = px.s[p - 1];
-      px.kind[p] = px.kind[p - 1];
-      --p;
-    }
-    px.z[p] = z;
-    px.s[p] = s;
-    px.kind[p] = uint8_t(kind);
-    return count_in(px);
+    return insert_sorted(px, z, s, kind);
+  }
+  void add_live(size_t inserted) {
+    live_ += inserted;
+    if (live_ > peak_) peak_ = live_;
   }
 
   // Removes the first k (<= n) inline fragments and moves overflow ones up.
@@ -104,9 +101,9 @@ class PixelLists {
     for (int i = k; i < n; ++i) {
       px.z[i - k] = px.z[i];
       px.s[i - k] = px.s[i];
-      px.kind[i - k] = px.kind[i];
     }
-    px.n = uint8_t(n - k);
+    px.kinds = uint16_t(px.kinds >> (2 * k));
+    px.n = uint16_t(n - k);
     live_ -= size_t(k);
     if (px.head != kNil) refill(px);
     if (px.n == 0) {
@@ -120,7 +117,9 @@ class PixelLists {
     while (px.n > 0) drop_front(px, px.n);
   }
 
-  size_t live_fragments() const { return live_; }     // pending, inline and overflow
+  // Pending fragments, inline and overflow, as of the last add_live (the
+  // peak is sampled there: once per face).
+  size_t live_fragments() const { return live_; }
   size_t peak_fragments() const { return peak_; }
   size_t overflow_fragments() const { return overflow_live_; }
   size_t peak_overflow_fragments() const { return overflow_peak_; }
@@ -129,11 +128,7 @@ class PixelLists {
  private:
   // a (za, ka) comes before a new fragment (z, kind): see FragmentKind.
   static bool before(float za, uint32_t ka, float z, uint32_t kind) { return za < z || (za == z && ka <= kind); }
-  bool count_in(PixelRecord& px) {
-    if (px.len != UINT16_MAX) ++px.len;
-    if (++live_ > peak_) peak_ = live_;
-    return true;
-  }
+  bool insert_sorted(PixelRecord& px, float z, float s, uint32_t kind);
   bool alloc(uint32_t* idx) {
     if (free_ != kNil) {
       *idx = free_;

@@ -69,7 +69,7 @@ class TileSweep {
       }
       z_target = std::max(z_target, in_.items.z_max[k]);
       ScreenVertex tri[3];
-      item_triangle(in_.items, k, in_.topo, in_.sv, in_.near, tri);
+      item_triangle(in_.items, k, in_.sv, in_.near, tri);
       const uint32_t id = in_.items.id[k];
       project(tri, (id & kNearItem) ? in_.near[id & ~kNearItem].cls : in_.cls[id], z_sweep);
     }
@@ -107,9 +107,17 @@ class TileSweep {
     if (timed_) S_.ms_composite += ms_between(t0, Clock::now());
   }
 
+  // Counts of one face's fragments, kept in registers by the hot loop and
+  // added up once per face.
+  struct FaceCounts {
+    uint64_t inserted = 0;
+    uint32_t max_len = 0;
+  };
+
   // One fragment for pixel p at image coordinates (X, Y): the per-fragment
   // path of the whole engine.
-  void add_fragment(uint32_t p, int X, int Y, float z, float s, uint32_t kind, float z_sweep) {
+  void add_fragment(uint32_t p, int X, int Y, float z, float s, uint32_t kind, float z_sweep,
+                    uint32_t max_list_length, FaceCounts& fc) {
     PixelRecord& px = ws_.px[p];
     if (px.done) return;  // early-terminated: nothing behind matters
     // Fragments this pixel holds before the sweep plane are final: composite
@@ -118,27 +126,34 @@ class TileSweep {
       composite_pixel(px, p, X, Y, z_sweep);
       if (px.done) return;
     }
-    if (!ws_.lists.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep);
+    if (!ws_.lists.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep, fc.inserted);
     if (!px.active) {
       px.active = 1;
       ws_.active.push_back(p);
     }
-    ++fragments_;
-    max_len_ = std::max<uint64_t>(max_len_, px.len);
-    if (rs_.max_list_length && px.len > rs_.max_list_length) {
+    ++fc.inserted;
+    fc.max_len = std::max<uint32_t>(fc.max_len, px.len);
+    if (max_list_length && px.len > max_list_length) {
       ++S_.forced_composites;  // force this pixel's final fragments out now
       composite_pixel(px, p, X, Y, z_sweep);
     }
   }
+  void end_face(const FaceCounts& fc) {
+    ws_.lists.add_live(fc.inserted);
+    fragments_ += fc.inserted;
+    max_len_ = std::max<uint64_t>(max_len_, fc.max_len);
+  }
 
-  // Overflow pool at its budget: composite everything already final (before the
-  // sweep plane) everywhere, then retry once.
-  [[gnu::noinline]] void insert_over_budget(PixelRecord& px, float z, float s, uint32_t kind, float z_sweep) {
+  // Overflow pool at its budget: composite everything already final (before
+  // the sweep plane) everywhere, then retry once.
+  [[gnu::noinline]] void insert_over_budget(PixelRecord& px, float z, float s, uint32_t kind, float z_sweep,
+                                            uint64_t face_inserted) {
     ++S_.budget_flushes;
     composite_all(z_sweep);
     if (!ws_.lists.insert(px, z, s, kind))
-      throw std::runtime_error("memory budget too small: " + std::to_string(ws_.lists.live_fragments()) +
-                               " fragments (" + mib(ws_.lists.overflow_fragments() * sizeof(Fragment)) +
+      throw std::runtime_error("memory budget too small: " +
+                               std::to_string(ws_.lists.live_fragments() + face_inserted) + " fragments (" +
+                               mib(ws_.lists.overflow_fragments() * sizeof(Fragment)) +
                                " beyond the pixel records) must be pending at once in one tile of this view");
   }
 
@@ -192,21 +207,27 @@ class TileSweep {
       const auto t2 = timed_ ? Clock::now() : Clock::time_point{};
       if (timed_) S_.ms_scan_convert += ms_between(t1, t2);
       if (rs_.raster_only) return;
+      FaceCounts fc;
       for (size_t k = 0; k < frags.size(); ++k)
         add_fragment(uint32_t(frags.y[k] - vp_.y0) * vw_ + uint32_t(frags.x[k] - vp_.x0), frags.x[k], frags.y[k],
-                     float(frags.z[k] - z_origin), float(frags.s[k]), kind, z_sweep);
+                     float(frags.z[k] - z_origin), float(frags.s[k]), kind, z_sweep, rs_.max_list_length, fc);
+      end_face(fc);
       if (timed_) S_.ms_insert += ms_between(t2, Clock::now());
       return;
     }
     // Renders: each fragment goes from its span to its list directly.
+    FaceCounts fc;
+    const uint32_t max_list_length = rs_.max_list_length;
     for (const RowSpan& r : spans.rows) {
       const uint32_t row = uint32_t(r.y - vp_.y0) * vw_;
       for (int32_t i = r.x0; i <= r.x1; ++i) {
         double z, s;
         st.attributes(double(i), double(r.y), &z, &s);
-        add_fragment(row + uint32_t(i - vp_.x0), i, r.y, float(z - z_origin), float(s), kind, z_sweep);
+        add_fragment(row + uint32_t(i - vp_.x0), i, r.y, float(z - z_origin), float(s), kind, z_sweep,
+                     max_list_length, fc);
       }
     }
+    end_face(fc);
   }
 
   // Heron's formula on the screen edges (Eqs. 4.1-4.3) and the box area,

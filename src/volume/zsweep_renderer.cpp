@@ -84,10 +84,11 @@ uint64_t peak_rss_bytes() {
 constexpr uint64_t kMinPoolFragments = 256;
 
 uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces) {
-  // Per vertex: view position, heap entry (and its copy); per face: class,
-  // done flag, and its sweep item (id, z_sweep, z_max) with its tile box.
-  const uint64_t per_point = sizeof(ScreenVertex) + 2 * sizeof(VertexHeap::Entry);
-  return num_points * per_point + num_faces * (2 + bin_bytes(0, 1) + 12);
+  // Per vertex: view position, heap entry (and its copy), rank; per face:
+  // class, done flag, sort key, and its sweep item (id, vertices, z_sweep,
+  // z_max, tile box).
+  const uint64_t per_point = sizeof(ScreenVertex) + 2 * sizeof(VertexHeap::Entry) + 8;
+  return num_points * per_point + num_faces * (2 + 4 + 4 + 12 + 8 + sizeof(TileBox));
 }
 
 RenderPlan plan_render(uint64_t budget, uint64_t shared, uint32_t tile_size, int threads) {
@@ -174,16 +175,17 @@ struct ZSweepRenderer::Impl {
         }
     }
     const auto t_order = Clock::now();
-    in.items = sweep_order(topo, in.sv, in.cls, std::move(clipped), std::move(events), in.near, in.z_origin);
+    const ScreenTiling tiling{rs.width, rs.height, rs.tile_size};
+    in.items = sweep_order(topo, in.sv, in.cls, clipped, std::move(events), in.near, in.z_origin, tiling);
     const auto t_bins = Clock::now();
     S.ms_order = ms_since(t_order);
-    in.bins = bin_items(in.items, topo, in.sv, in.near, rs.width, rs.height, rs.tile_size);
+    in.bins = bin_items(in.items, tiling);
     S.ms_binning = ms_since(t_bins);
-    S.faces_offscreen = in.bins.offscreen;
-    S.faces_degenerate = in.bins.degenerate;
+    S.faces_offscreen = in.items.offscreen;
+    S.faces_degenerate = in.items.degenerate;
     S.bin_entries = in.bins.items.size();
 
-    const uint64_t shared = shared0 + bin_bytes(in.bins.items.size(), 0) + in.bins.offset.size() * 8;
+    const uint64_t shared = shared0 + in.bins.items.size() * 4 + in.bins.offset.size() * 8;
     plan = plan_render(budget, shared, rs.tile_size, threads);
     if (plan.max_fragments == 0) throw too_small(shared + uint64_t(threads) * (tile_state + kMinPoolFragments * 16));
     S.fragment_capacity = plan.max_fragments;
