@@ -33,7 +33,7 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
       ++counts->tets_degenerate;
       continue;
     }
-    if (tf.max_opacity(lo, hi) <= 0) {
+    if (tf.transparent_over(lo, hi)) {
       ++counts->tets_invisible;
       continue;
     }

@@ -67,6 +67,21 @@ TransferFunction::TransferFunction(std::vector<ColorPoint> color, std::vector<Op
     at_bs_.push_back({c[0], c[1], c[2], this->opacity(b)});
   }
   for (size_t k = 0; k + 1 < bs_.size(); ++k) inv_width_.push_back(1.0 / (bs_[k + 1] - bs_[k]));
+  // Runs of zero opacity: opacity is linear between its points and constant
+  // outside them, so it is 0 on [p_i, p_j] exactly when every point from i
+  // to j is 0, below the first point when that one is, above the last likewise.
+  const size_t n = opacity_.size();
+  for (size_t i = 0; i < n;) {
+    if (opacity_[i].a != 0) {
+      ++i;
+      continue;
+    }
+    size_t j = i;
+    while (j + 1 < n && opacity_[j + 1].a == 0) ++j;
+    zero_begin_.push_back(i == 0 ? -INFINITY : opacity_[i].s);
+    zero_end_.push_back(j + 1 == n ? INFINITY : opacity_[j].s);
+    i = j + 1;
+  }
 }
 
 std::array<double, 4> TransferFunction::rgba(double s) const { return rgba_in(interval(s), s); }

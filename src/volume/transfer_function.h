@@ -47,6 +47,13 @@ class TransferFunction {
   double extinction(double s) const;
   // Largest opacity over [lo, hi]; 0 means everything in the range is invisible.
   double max_opacity(double lo, double hi) const;
+  // True when the opacity is exactly 0 on all of [lo, hi] (lo <= hi): one
+  // search among the maximal closed runs where it is, for per-tet culling.
+  bool transparent_over(double lo, double hi) const {
+    // The first run ending at or after lo; it must also start at or before lo.
+    const auto it = std::lower_bound(zero_end_.begin(), zero_end_.end(), lo);
+    return it != zero_end_.end() && zero_begin_[size_t(it - zero_end_.begin())] <= lo && hi <= *it;
+  }
   // 1 / (breakpoints[k+1] - breakpoints[k]), one per interval (batch kernels).
   const double* inverse_widths() const { return inv_width_.data(); }
   // Index k with breakpoints[k] <= s < breakpoints[k+1]; -1 below the first.
@@ -61,6 +68,7 @@ class TransferFunction {
   std::vector<double> bs_;
   std::vector<std::array<double, 4>> at_bs_;  // colour and opacity at each breakpoint
   std::vector<double> inv_width_;             // 1 / (bs_[k+1] - bs_[k])
+  std::vector<double> zero_begin_, zero_end_; // maximal closed runs of zero opacity, sorted (±inf at the ends)
   double unit_ = 1.0;
 };
 

@@ -1,11 +1,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include <gtest/gtest.h>
 
 #include "image/image.h"
 #include "scene/scene.h"
+#include "volume/transfer_function.h"
 #include "test_paths.h"
 
 namespace zs {
@@ -123,6 +125,38 @@ TEST(ImageCompare, NumbersAndDifferenceImage) {
   EXPECT_FLOAT_EQ(f.at(3, 1)[0], 1.f);  // full red at the scale
   EXPECT_FLOAT_EQ(f.at(1, 0)[0] + f.at(1, 0)[1] + f.at(1, 0)[2], 0.f);
   EXPECT_THROW(compare_images(a, Image(2, 2)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace zs
+
+namespace zs {
+namespace {
+
+// Per-tet culling (face_classes.cpp) asks transparent_over; it must agree
+// with the direct definition (max_opacity == 0) on every range, including
+// ranges touching a run's ends, single points and ranges outside the points.
+TEST(TransferFunction, TransparentOverMatchesMaxOpacity) {
+  const std::vector<ColorPoint> c = {{0, 0.2, 0.3, 0.4}, {1, 0.9, 0.8, 0.7}};
+  const std::vector<std::vector<OpacityPoint>> cases = {
+      {{0.0, 0.0}, {1.0, 0.6}},                                     // zero below and at the first point
+      {{0.0, 0.3}, {0.2, 0.0}, {0.4, 0.0}, {0.6, 0.5}, {1.0, 0.0}},  // an inner run, zero above the last
+      {{0.0, 0.2}, {0.5, 0.0}, {1.0, 0.2}},                          // a single zero point
+      {{0.0, 0.0}, {1.0, 0.0}},                                      // transparent everywhere
+      {{0.0, 0.1}, {1.0, 0.6}},                                      // nowhere
+  };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.3, 1.3);
+  for (const auto& op : cases) {
+    const TransferFunction tf(c, op);
+    std::vector<double> probes = {-1, 0, 0.2, 0.4, 0.5, 0.6, 1, 2};
+    for (int k = 0; k < 40; ++k) probes.push_back(u(rng));
+    for (double lo : probes)
+      for (double hi : probes) {
+        if (lo > hi) continue;
+        EXPECT_EQ(tf.transparent_over(lo, hi), tf.max_opacity(lo, hi) <= 0) << lo << " " << hi;
+      }
+  }
 }
 
 }  // namespace
