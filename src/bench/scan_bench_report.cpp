@@ -183,7 +183,7 @@ void write_scan_bench_report(const std::string& dir, const std::vector<ScanBench
   for (const auto& m : ix.meshes) {
     std::vector<PlotSeries> series;
     for (const auto& [l, map] : ix.by_label) {
-      PlotSeries s{l, {}, {}};
+      PlotSeries s{l, {}, {}, {}};
       for (uint32_t sz : ix.sizes)
         if (const ScanBenchRow* r = ix.at(l, m, sz)) s.x.push_back(sz), s.y.push_back(r->total_ms);
       if (!s.x.empty()) series.push_back(s);

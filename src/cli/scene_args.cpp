@@ -18,7 +18,7 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
   cmd.add_option("--height", height, "Override image height")->check(CLI::Range(1u, 1u << 20));
   cmd.add_option("--projection", projection, "Automatic camera: orthographic (default) or perspective");
   if (!engine_knobs) return;
-  cmd.add_option("--scan", scan, "Scan strategy: bbox, bconvert, span");
+  cmd.add_option("--scan", scan, "Scan strategy: span (default), bbox (same image, slower), bconvert");
   cmd.add_option("--variant", variant, "B-Convert variant: truncate, round, dilate, dda3d, runlength");
   cmd.add_option("--integrator", integrator, "exact, linear, preintegrated or taylor2");
   cmd.add_option("--memory-budget", memory_budget_mb, "Memory budget in MiB (default: half of physical memory)");

@@ -21,7 +21,7 @@ struct RenderSettings {
   double background[4] = {0, 0, 0, 0};  // premultiplied RGBA
   Camera camera;
   TransferFunction tf;
-  ScanStrategy scan = ScanStrategy::BBox;
+  ScanStrategy scan = ScanStrategy::Span;  // exact and the fastest; bbox gives the same image
   BConvertVariant bconvert_variant = BConvertVariant::Truncate;
   Integrator integrator = Integrator::Exact;
   // Early termination threshold t in 8-bit levels: stop a pixel once its

@@ -18,6 +18,7 @@
 
 #include "util/progress.h"
 #include "volume/face_classes.h"
+#include "volume/sink_relay.h"
 #include "volume/near_clip.h"
 #include "volume/sweep_order.h"
 #include "volume/tile_bins.h"
@@ -83,6 +84,14 @@ uint64_t peak_rss_bytes() {
 
 constexpr uint64_t kMinPoolFragments = 256;
 
+// Finished tiles that may wait for a busy sink (sink_relay.h): up to 16, at
+// most 64 MiB, none with one thread.
+size_t relay_queue_tiles(uint32_t tile_size, int threads) {
+  if (threads <= 1) return 0;
+  const uint64_t tile_bytes = uint64_t(tile_size) * tile_size * 16;
+  return size_t(std::max<uint64_t>(1, std::min<uint64_t>(16, (uint64_t(64) << 20) / tile_bytes)));
+}
+
 uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces) {
   // Per vertex: view position, heap entry (and its copy), rank; per face:
   // class, done flag, sort key, and its sweep item (id, vertices, z_sweep,
@@ -137,7 +146,8 @@ struct ZSweepRenderer::Impl {
     const uint64_t tile_state = uint64_t(rs.tile_size) * rs.tile_size * kTilePixelBytes;
     // Checked before anything large is allocated, with the bins counted as
     // one entry per face; checked again once their real size is known.
-    const uint64_t shared0 = zsweep_shared_bytes(mesh.num_points(), topo.num_faces()) + sink_bytes;
+    const uint64_t shared0 = zsweep_shared_bytes(mesh.num_points(), topo.num_faces()) + sink_bytes +
+                             relay_queue_tiles(rs.tile_size, threads) * uint64_t(rs.tile_size) * rs.tile_size * 16;
     if (plan_render(budget, shared0 + topo.num_faces() * 4, rs.tile_size, threads).max_fragments == 0)
       throw too_small(shared0 + topo.num_faces() * 4 + uint64_t(threads) * (tile_state + kMinPoolFragments * 16));
 
@@ -216,20 +226,17 @@ void ZSweepRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* t
   // Each thread's counters on their own cache lines (they change per fragment).
   struct alignas(128) PaddedStats : RenderStats {};
   tbb::enumerable_thread_specific<PaddedStats> tile_stats;
-  std::mutex sink_mu;
+  const int threads = std::max(1, I.rs.threads);
+  SinkRelay relay(sink, relay_queue_tiles(I.grid.size, threads));
   auto run = [&](size_t k) {
     const uint32_t t = (*tiles)[k];
     const TileRect r = I.grid.rect(t);
     TileWorkspace& ws = spaces.local();
     sweep_tile(I.in, t, Viewport{int(r.x0), int(r.y0), int(r.x1), int(r.y1)}, I.plan.max_fragments, ws,
                tile_stats.local());
-    {
-      std::lock_guard<std::mutex> lock(sink_mu);
-      sink.tile(r, ws.out.data());
-    }
+    relay.deliver(r, ws.out.data());
     progress.add(I.in.bins.offset[t + 1] - I.in.bins.offset[t] + 1);
   };
-  const int threads = std::max(1, I.rs.threads);
   if (threads == 1 || tiles->size() < 2) {
     for (size_t k = 0; k < tiles->size(); ++k) run(k);
   } else {
@@ -248,6 +255,7 @@ void ZSweepRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* t
       }
     });
   }
+  relay.finish();
   progress.finish();
   if (!stats) return;
   for (const RenderStats& s : tile_stats) add_stats(*stats, s);
