@@ -1,6 +1,9 @@
 #include "mesh/topology.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
 
 namespace zs {
 
@@ -86,6 +89,28 @@ Topology build_topology(const TetMesh& m) {
     topo.use_faces[fill[f[0]]++] = fi;
     if (f[1] != f[0]) topo.use_faces[fill[f[1]]++] = fi;
     if (f[2] != f[1]) topo.use_faces[fill[f[2]]++] = fi;
+  }
+
+  topo.tet_degenerate.resize(nt);
+  topo.tet_scalar_range.resize(nt);
+  for (size_t t = 0; t < nt; ++t) {
+    const Tet& tet = m.tets[t];
+    double lo = INFINITY, hi = -INFINITY, l2 = 0;
+    bool finite = true;
+    for (int a = 0; a < 4; ++a) {
+      const glm::dvec3& p = m.points[tet[a]];
+      const double s = m.has_scalars() ? m.scalars[tet[a]] : 0.0;
+      finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(s);
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+      for (int b = a + 1; b < 4; ++b) {
+        const glm::dvec3 d = p - m.points[tet[b]];
+        l2 = std::max(l2, glm::dot(d, d));
+      }
+    }
+    // Same relative criterion as validation (validate.h).
+    topo.tet_degenerate[t] = !finite || !(std::abs(signed_volume6(m, tet)) > 1e-10 * l2 * std::sqrt(l2));
+    topo.tet_scalar_range[t] = {lo, hi};
   }
   return topo;
 }

@@ -30,6 +30,13 @@ struct Topology {
   std::vector<uint32_t> use_offsets;
   std::vector<uint32_t> use_faces;
   size_t num_boundary_faces = 0;
+  // Per tet, what culling asks of it whatever the view and transfer function
+  // (volume/face_classes.h), computed once here from the mesh's points and
+  // scalars (rebuild the topology if they change): degenerate (zero volume by
+  // validation's relative criterion, or a non-finite point or scalar), and the
+  // scalar range over its four vertices.
+  std::vector<uint8_t> tet_degenerate;
+  std::vector<std::array<double, 2>> tet_scalar_range;
 
   size_t num_faces() const { return faces.size(); }
   bool is_boundary(uint32_t f) const { return face_tets[f][1] == kNoTet; }

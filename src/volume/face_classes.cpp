@@ -13,27 +13,11 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
   const size_t nt = m.num_tets();
   std::vector<uint8_t> visible(nt, 0);
   for (size_t t = 0; t < nt; ++t) {
-    const Tet& tet = m.tets[t];
-    double lo = INFINITY, hi = -INFINITY;
-    bool finite = true;
-    double l2 = 0;
-    for (int a = 0; a < 4; ++a) {
-      const glm::dvec3& p = m.points[tet[a]];
-      const double s = m.has_scalars() ? m.scalars[tet[a]] : 0.0;
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(s)) finite = false;
-      lo = std::min(lo, s);
-      hi = std::max(hi, s);
-      for (int b = a + 1; b < 4; ++b) {
-        const glm::dvec3 d = p - m.points[tet[b]];
-        l2 = std::max(l2, glm::dot(d, d));
-      }
-    }
-    // Same relative criterion as validation (validate.h).
-    if (!finite || !(std::abs(signed_volume6(m, tet)) > 1e-10 * l2 * std::sqrt(l2))) {
+    if (topo.tet_degenerate[t]) {
       ++counts->tets_degenerate;
       continue;
     }
-    if (tf.transparent_over(lo, hi)) {
+    if (tf.transparent_over(topo.tet_scalar_range[t][0], topo.tet_scalar_range[t][1])) {
       ++counts->tets_invisible;
       continue;
     }

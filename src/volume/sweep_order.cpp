@@ -74,6 +74,8 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
   const uint32_t nf = uint32_t(topo.num_faces());
   std::vector<uint32_t> key(nf, kDropped);
   std::vector<uint32_t> start(n_events + 1, 0);
+  std::vector<TileBox> kept_box;  // the kept faces' boxes, in face order
+  kept_box.reserve(nf / 2);
   for (uint32_t f = 0; f < nf; ++f) {
     if (done[f] || cls[f] == FaceClass::Culled) continue;
     const auto& fv = topo.faces[f];
@@ -88,6 +90,7 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
     }
     key[f] = r;
     ++start[r + 1];
+    kept_box.push_back(box);
   }
   for (size_t r = 0; r < n_events; ++r) start[r + 1] += start[r];
   const size_t base = it.size(), total = base + start[n_events];
@@ -96,17 +99,17 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
   it.z_sweep.resize(total);
   it.z_max.resize(total);
   it.box.resize(total);
+  size_t kept = 0;
   for (uint32_t f = 0; f < nf; ++f) {
     const uint32_t r = key[f];
     if (r == kDropped) continue;
     const size_t k = base + start[r]++;
     const auto& fv = topo.faces[f];
-    const ScreenVertex v[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
-    tile_box(v, tiling, &it.box[k]);
+    it.box[k] = kept_box[kept++];
     it.id[k] = f;
     it.tri[k] = fv;
     it.z_sweep[k] = z_at[r];
-    it.z_max[k] = float(std::max({v[0].z, v[1].z, v[2].z}) - z_origin);
+    it.z_max[k] = float(std::max({sv[fv[0]].z, sv[fv[1]].z, sv[fv[2]].z}) - z_origin);
   }
   return it;
 }

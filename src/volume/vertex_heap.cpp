@@ -33,11 +33,29 @@ void VertexHeap::assign(std::vector<Entry> entries) {
   for (size_t i = a_.size() / 2; i-- > 0;) sift_down(i);
 }
 
+// Floyd's bottom-up pop: the hole left by the root walks down to a leaf along
+// the smaller children (one comparison per level instead of two), then the
+// last entry is sifted up from there — usually a level or two, as it came
+// from the bottom.
 VertexHeap::Entry VertexHeap::pop() {
   const Entry top = a_.front();
-  a_.front() = a_.back();
+  const Entry last = a_.back();
   a_.pop_back();
-  if (!a_.empty()) sift_down(0);
+  const size_t n = a_.size();
+  if (n == 0) return top;
+  size_t i = 0;
+  for (size_t l = 1; l < n; l = 2 * i + 1) {
+    const size_t c = (l + 1 < n && less(a_[l + 1], a_[l])) ? l + 1 : l;
+    a_[i] = a_[c];
+    i = c;
+  }
+  while (i > 0) {
+    const size_t p = (i - 1) / 2;
+    if (!less(last, a_[p])) break;
+    a_[i] = a_[p];
+    i = p;
+  }
+  a_[i] = last;
   return top;
 }
 
