@@ -215,16 +215,61 @@ class TileSweep {
       if (timed_) S_.ms_insert += ms_between(t2, Clock::now());
       return;
     }
-    // Renders: each fragment goes from its span to its list directly.
+    // Renders: each fragment goes from its span to its list directly, in a
+    // loop built for the common case (orthographic, batched compositing, no
+    // list limit) so it carries no test that cannot change within a render.
+    if (!st.perspective && comp_.batched() && !rs_.max_list_length)
+      insert_spans_ortho_batched(st, kind, z_sweep);
+    else
+      insert_spans(st, kind, z_sweep);
+  }
+
+  void insert_spans(const ScreenTriangle& st, uint32_t kind, float z_sweep) {
     FaceCounts fc;
     const uint32_t max_list_length = rs_.max_list_length;
-    for (const RowSpan& r : spans.rows) {
+    const double z_origin = in_.z_origin;
+    for (const RowSpan& r : ws_.spans.rows) {
       const uint32_t row = uint32_t(r.y - vp_.y0) * vw_;
       for (int32_t i = r.x0; i <= r.x1; ++i) {
         double z, s;
         st.attributes(double(i), double(r.y), &z, &s);
         add_fragment(row + uint32_t(i - vp_.x0), i, r.y, float(z - z_origin), float(s), kind, z_sweep,
                      max_list_length, fc);
+      }
+    }
+    end_face(fc);
+  }
+
+  // insert_spans and add_fragment for orthographic views on the batched path
+  // without a list limit: the same operations in the same order (the same
+  // image, bit for bit), with every per-render test hoisted out.
+  void insert_spans_ortho_batched(const ScreenTriangle& st, uint32_t kind, float z_sweep) {
+    FaceCounts fc;
+    const double z_origin = in_.z_origin;
+    PixelRecord* const px0 = ws_.px.data();
+    PixelLists& lists = ws_.lists;
+    const double x0 = st.x0, y0 = st.y0, q_c = st.q_c, q_gx = st.q_gx, q_gy = st.q_gy;
+    const double r_c = st.r_c, r_gx = st.r_gx, r_gy = st.r_gy;
+    const double z_lo = st.z_lo, z_hi = st.z_hi, s_lo = st.s_lo, s_hi = st.s_hi;
+    for (const RowSpan& r : ws_.spans.rows) {
+      const uint32_t row = uint32_t(r.y - vp_.y0) * vw_;
+      const double dy = double(r.y) - y0;
+      for (int32_t i = r.x0; i <= r.x1; ++i) {
+        // ScreenTriangle::attributes, orthographic.
+        const double dx = double(i) - x0;
+        const double zz = q_c + q_gx * dx + q_gy * dy;
+        const double ss = r_c + r_gx * dx + r_gy * dy;
+        const float z = float(std::clamp(zz, z_lo, z_hi) - z_origin), s = float(std::clamp(ss, s_lo, s_hi));
+        const uint32_t p = row + uint32_t(i - vp_.x0);
+        PixelRecord& px = px0[p];
+        if (px.z[0] < z_sweep) comp_.composite_batched(px, p, lists, z_sweep, 1.0);
+        if (!lists.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep, fc.inserted);
+        if (!px.active) {
+          px.active = 1;
+          ws_.active.push_back(p);
+        }
+        ++fc.inserted;
+        fc.max_len = std::max<uint32_t>(fc.max_len, px.len);
       }
     }
     end_face(fc);
