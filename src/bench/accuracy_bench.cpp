@@ -218,7 +218,7 @@ void write_accuracy_plots(const std::string& dir, const std::vector<AccuracyRow>
       write_line_plot(dir + (metric == 0 ? "/accuracy-" : "/accuracy-rmse-") + tag + ".png", spec, series);
     }
 
-    PlotSeries measured{"measured", {}, {}}, bound{"bound t/2 + err(t=0)", {}, {}};
+    PlotSeries measured{"measured", {}, {}, {}}, bound{"bound t/2 + err(t=0)", {}, {}, {}};
     for (const AccuracyRow* r : rs) {
       if (r->group != "early-termination") continue;
       const double t = std::stod(r->setting.substr(2));
