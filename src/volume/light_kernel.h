@@ -104,7 +104,8 @@ constexpr double kHermite8Tolerance = 1e-9 * 25401600.0;
 // One piece: colour and opacity linear, optical depth in closed form, the
 // mean of T by the Hermite rule where its bound allows.
 template <class V>
-inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out) {
+inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out,
+                        double tolerance = kHermite8Tolerance) {
   const V one(1.0);
   const V w0 = one - in.a0, w1 = one - in.a1;
   V L0, L1;
@@ -124,7 +125,7 @@ inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out)
     dc[k] = in.c1[k] - in.c0[k];
     dcmax = max(dcmax, abs(dc[k]));
   }
-  out->ok = dcmax * hermite8_bound(A, B, r) <= V(kHermite8Tolerance);
+  out->ok = dcmax * hermite8_bound(A, B, r) <= V(tolerance);
   const V h0 = d * inv_w0, h1 = d * inv_w1;
   const V Jm = hermite8_mean(g0, g1, kappa * h0, kappa * h1, kappa * h0 * h0, kappa * h1 * h1, T);
   for (int k = 0; k < 3; ++k) out->rgb[k] = in.c0[k] - in.c1[k] * T + dc[k] * Jm;
@@ -141,6 +142,7 @@ inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out)
 struct TfTables {
   int nb = 0;                 // breakpoints
   const double* bs = nullptr; // the nb breakpoints, for counting
+  const double* cut = nullptr;  // entry n >= 1: breakpoint n - 1 (where interval n starts)
   const double* left = nullptr;
   const double* inv_w = nullptr;
   const double* lo[4] = {};
@@ -159,40 +161,55 @@ struct SegmentSoA {
 };
 constexpr int kCountInKernel = 16;
 
+// The breakpoint counts n of segments i.. (light_kernel's table index).
+template <class V>
+inline void breakpoint_counts(const TfTables& tf, const SegmentSoA& q, size_t i, V s0, V s1, V* n0, V* n1) {
+  if (q.n0) {
+    *n0 = V::load(q.n0 + i);
+    *n1 = V::load(q.n1 + i);
+    return;
+  }
+  // !(s < b) counts b <= s, and counts NaN above every breakpoint, as
+  // TransferFunction::interval does.
+  const V one(1.0);
+  *n0 = *n1 = V(0.0);
+  for (int j = 0; j < tf.nb; ++j) {
+    const V b(tf.bs[j]);
+    *n0 = select(not_less(s0, b), *n0 + one, *n0);
+    *n1 = select(not_less(s1, b), *n1 + one, *n1);
+  }
+}
+
+// Colour and opacity at scalars sa and sb, both in (or at the ends of)
+// interval n: the piece's two ends.
+template <class V>
+inline void piece_ends(const TfTables& tf, V n, V sa, V sb, PieceIn<V>* in) {
+  const bool small = tf.nb + 1 <= 8;
+  const V zero(0.0);
+  const auto inside = V::mask_and(n >= V(1.0), n <= V(double(tf.nb - 1)));
+  const V left = V::lookup(tf.left, n, small), inv_w = V::lookup(tf.inv_w, n, small);
+  const V t0 = select(inside, (sa - left) * inv_w, zero), t1 = select(inside, (sb - left) * inv_w, zero);
+  V lo = V::lookup(tf.lo[3], n, small), d = V::lookup(tf.d[3], n, small);
+  in->a0 = lo + t0 * d;
+  in->a1 = lo + t1 * d;
+  for (int k = 0; k < 3; ++k) {
+    lo = V::lookup(tf.lo[k], n, small);
+    d = V::lookup(tf.d[k], n, small);
+    in->c0[k] = lo + t0 * d;
+    in->c1[k] = lo + t1 * d;
+  }
+}
+
 // Segments i .. i + lanes - 1: both ends' colour and opacity from the tables,
 // then piece_light. `ok` is false where the segment crosses a breakpoint
 // (several pieces) or the Hermite bound fails.
 template <class V>
 inline void segment_light(const TfTables& tf, const SegmentSoA& q, size_t i, double inv_unit) {
-  const V one(1.0), zero(0.0);
   const V s0 = V::load(q.s0 + i), s1 = V::load(q.s1 + i);
-  V n0 = zero, n1 = zero;
-  if (q.n0) {
-    n0 = V::load(q.n0 + i);
-    n1 = V::load(q.n1 + i);
-  } else {
-    // !(s < b) counts b <= s, and counts NaN above every breakpoint, as
-    // TransferFunction::interval does.
-    for (int j = 0; j < tf.nb; ++j) {
-      const V b(tf.bs[j]);
-      n0 = select(not_less(s0, b), n0 + one, n0);
-      n1 = select(not_less(s1, b), n1 + one, n1);
-    }
-  }
-  const bool small = tf.nb + 1 <= 8;
-  const auto inside = V::mask_and(n0 >= one, n0 <= V(double(tf.nb - 1)));
-  const V left = V::lookup(tf.left, n0, small), inv_w = V::lookup(tf.inv_w, n0, small);
-  const V t0 = select(inside, (s0 - left) * inv_w, zero), t1 = select(inside, (s1 - left) * inv_w, zero);
+  V n0, n1;
+  breakpoint_counts(tf, q, i, s0, s1, &n0, &n1);
   PieceIn<V> in;
-  V lo = V::lookup(tf.lo[3], n0, small), d = V::lookup(tf.d[3], n0, small);
-  in.a0 = lo + t0 * d;
-  in.a1 = lo + t1 * d;
-  for (int k = 0; k < 3; ++k) {
-    lo = V::lookup(tf.lo[k], n0, small);
-    d = V::lookup(tf.d[k], n0, small);
-    in.c0[k] = lo + t0 * d;
-    in.c1[k] = lo + t1 * d;
-  }
+  piece_ends(tf, n0, s0, s1, &in);
   in.len = V::load(q.len + i);
   PieceOut<V> out;
   piece_light(in, inv_unit, &out);
@@ -201,10 +218,50 @@ inline void segment_light(const TfTables& tf, const SegmentSoA& q, size_t i, dou
   V::store_mask(q.ok + i, V::mask_and(out.ok, n0 == n1));
 }
 
-// The batch over n segments (a multiple of 8), one lane width each.
-void segment_lights_scalar(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit);
-void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit);    // needs AVX2
-void segment_lights_avx512(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit);  // needs AVX-512F
+// The segments segment_light could not take, in 2·parts pieces: cut at the
+// breakpoint crossed when the ends lie in neighbouring intervals (else at
+// the middle), each half cut again into `parts` equal pieces, each piece by
+// piece_light within 1/(2·parts) of the tolerance (so the segment stays
+// within it), composited front to back. `ok` stays false where the ends lie
+// further apart or a piece's bound still fails.
+template <class V>
+inline void segment_light_split(const TfTables& tf, const SegmentSoA& q, size_t i, double inv_unit, int parts) {
+  const V one(1.0), half(0.5);
+  const V s0 = V::load(q.s0 + i), s1 = V::load(q.s1 + i), len = V::load(q.len + i);
+  V n0, n1;
+  breakpoint_counts(tf, q, i, s0, s1, &n0, &n1);
+  const auto same = n0 == n1;
+  const V cut = select(same, half * (s0 + s1), V::lookup(tf.cut, max(n0, n1), tf.nb + 1 <= 8));
+  const V frac = select(same, half, (cut - s0) / (s1 - s0));
+  auto ok = abs(n1 - n0) <= one;
+  const double tol = kHermite8Tolerance / double(2 * parts);
+  V rgb[3] = {V(0.0), V(0.0), V(0.0)}, T = one;
+  for (int h = 0; h < 2; ++h) {
+    const V sa = h == 0 ? s0 : cut, sb = h == 0 ? cut : s1, n = h == 0 ? n0 : n1;
+    const V hlen = (h == 0 ? frac : one - frac) * len;
+    for (int j = 0; j < parts; ++j) {
+      const V pa = j == 0 ? sa : sa + (sb - sa) * V(double(j) / parts);
+      const V pb = j + 1 == parts ? sb : sa + (sb - sa) * V(double(j + 1) / parts);
+      PieceIn<V> in;
+      piece_ends(tf, n, pa, pb, &in);
+      in.len = hlen * V(1.0 / parts);
+      PieceOut<V> out;
+      piece_light(in, inv_unit, &out, tol);
+      for (int k = 0; k < 3; ++k) rgb[k] = rgb[k] + T * out.rgb[k];
+      T = T * out.T;
+      ok = V::mask_and(ok, out.ok);
+    }
+  }
+  for (int k = 0; k < 3; ++k) rgb[k].store(q.rgb[k] + i);
+  T.store(q.T + i);
+  V::store_mask(q.ok + i, ok);
+}
+
+// The batch over n segments (a multiple of 16), one lane width each;
+// parts = 0: segment_light, else segment_light_split with that many parts.
+void segment_lights_scalar(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts);
+void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts);  // AVX2
+void segment_lights_avx512(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts);  // AVX-512F
 bool have_avx2();
 bool have_avx512();
 

@@ -78,7 +78,11 @@ struct Lane4 {
 
 }  // namespace
 
-void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit) {
+void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts) {
+  if (parts > 0) {
+    for (size_t i = 0; i < n; i += 4) segment_light_split<Lane4>(tf, q, i, inv_unit, parts);
+    return;
+  }
   for (size_t i = 0; i < n; i += 4) segment_light<Lane4>(tf, q, i, inv_unit);
 }
 

@@ -113,7 +113,11 @@ struct Lane8x2 {
 
 }  // namespace
 
-void segment_lights_avx512(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit) {
+void segment_lights_avx512(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts) {
+  if (parts > 0) {
+    for (size_t i = 0; i < n; i += 8) segment_light_split<Lane8>(tf, q, i, inv_unit, parts);
+    return;
+  }
   size_t i = 0;
   for (; i + 16 <= n; i += 16) segment_light<Lane8x2>(tf, q, i, inv_unit);
   for (; i < n; i += 8) segment_light<Lane8>(tf, q, i, inv_unit);

@@ -8,8 +8,11 @@ namespace zs {
 
 namespace light {
 
-void segment_lights_scalar(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit) {
-  for (size_t i = 0; i < n; ++i) segment_light<Lane1>(tf, q, i, inv_unit);
+void segment_lights_scalar(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts) {
+  for (size_t i = 0; i < n; ++i) {
+    if (parts > 0) segment_light_split<Lane1>(tf, q, i, inv_unit, parts);
+    else segment_light<Lane1>(tf, q, i, inv_unit);
+  }
 }
 
 bool have_avx2() {
@@ -41,10 +44,11 @@ KernelWidth best_kernel_width() {
 
 SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunction& tf, KernelWidth width)
     : integ_(integ), tf_(tf), width_(width), pixel_(kCapacity), s0_(kCapacity), s1_(kCapacity), len_(kCapacity),
-      ok_(kCapacity), inv_unit_(1.0 / tf.unit_distance()) {
+      ok_(kCapacity), retry_(kCapacity), r_s0_(kCapacity), r_s1_(kCapacity), r_len_(kCapacity), r_T_(kCapacity),
+      r_ok_(kCapacity), inv_unit_(1.0 / tf.unit_distance()) {
   if (width_ == KernelWidth::AVX512 && !light::have_avx512()) width_ = KernelWidth::AVX2;
   if (width_ == KernelWidth::AVX2 && !light::have_avx2()) width_ = KernelWidth::Scalar;
-  for (int k = 0; k < 3; ++k) rgb_[k].resize(kCapacity);
+  for (int k = 0; k < 3; ++k) rgb_[k].resize(kCapacity), r_rgb_[k].resize(kCapacity);
   T_.resize(kCapacity);
   const std::vector<double>& bs = tf.breakpoints();
   const int nb = int(bs.size());
@@ -54,7 +58,7 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
   }
   // Tables indexed by n = k + 1 (light_kernel.h), at least 8 entries each.
   const size_t m = std::max<size_t>(size_t(nb) + 1, 8);
-  tables_.assign(m * 10, 0.0);
+  tables_.assign(m * 11, 0.0);
   double* t = tables_.data();
   auto table = [&](int i) { return t + size_t(i) * m; };
   for (int n = 0; n <= nb; ++n) {
@@ -63,6 +67,7 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
     const std::array<double, 4>& lo = tf.rgba_at_breakpoint(k < 0 ? 0 : inside ? k : nb - 1);
     table(0)[n] = inside ? bs[size_t(k)] : 0.0;
     table(1)[n] = inside ? tf.inverse_widths()[k] : 0.0;
+    table(10)[n] = n >= 1 ? bs[size_t(n - 1)] : 0.0;
     for (int c = 0; c < 4; ++c) {
       table(2 + c)[n] = lo[size_t(c)];
       table(6 + c)[n] = inside ? tf.rgba_at_breakpoint(k + 1)[size_t(c)] - lo[size_t(c)] : 0.0;
@@ -70,6 +75,7 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
   }
   tf_tables_.nb = nb;
   tf_tables_.bs = bs.data();
+  tf_tables_.cut = table(10);
   tf_tables_.left = table(0);
   tf_tables_.inv_w = table(1);
   for (int c = 0; c < 4; ++c) {
@@ -79,24 +85,51 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
 }
 
 void SegmentBatch::run_kernel() {
-  // Pad to a multiple of 8 with empty segments.
-  const size_t n8 = (n_ + 7) & ~size_t(7);
+  run_pass(s0_.data(), s1_.data(), len_.data(), n_, rgb_[0].data(), rgb_[1].data(), rgb_[2].data(), T_.data(),
+           ok_.data(), 0);
+  // Segments the one-piece rule could not take (a breakpoint inside, or a
+  // thick piece): again, in pieces, with the vector kernel; what still fails
+  // goes to SegmentIntegrator in flush().
+  size_t m = 0;
+  for (size_t i = 0; i < n_; ++i)
+    if (!ok_[i]) {
+      retry_[m] = uint32_t(i);
+      r_s0_[m] = s0_[i];
+      r_s1_[m] = s1_[i];
+      r_len_[m] = len_[i];
+      ++m;
+    }
+  if (m == 0) return;
+  run_pass(r_s0_.data(), r_s1_.data(), r_len_.data(), m, r_rgb_[0].data(), r_rgb_[1].data(), r_rgb_[2].data(),
+           r_T_.data(), r_ok_.data(), kSplitParts);
+  for (size_t r = 0; r < m; ++r) {
+    if (!r_ok_[r]) continue;
+    const uint32_t i = retry_[r];
+    for (int k = 0; k < 3; ++k) rgb_[k][i] = r_rgb_[k][r];
+    T_[i] = r_T_[r];
+    ok_[i] = 1;
+  }
+}
+
+void SegmentBatch::run_pass(double* s0, double* s1, double* len, size_t n, double* r, double* g, double* b,
+                            double* T, uint8_t* ok, int parts) {
+  // Pad to a multiple of 16 with empty segments.
+  const size_t n16 = (n + 15) & ~size_t(15);
   const double s_pad = tf_.breakpoints().front();
-  for (size_t i = n_; i < n8; ++i) s0_[i] = s1_[i] = s_pad, len_[i] = 0;
-  light::SegmentSoA q{s0_.data(), s1_.data(), len_.data(), nullptr, nullptr, {rgb_[0].data(), rgb_[1].data(), rgb_[2].data()},
-                      T_.data(), ok_.data()};
+  for (size_t i = n; i < n16; ++i) s0[i] = s1[i] = s_pad, len[i] = 0;
+  light::SegmentSoA q{s0, s1, len, nullptr, nullptr, {r, g, b}, T, ok};
   if (!n0_.empty()) {  // long transfer functions: search here, not in the kernel
-    for (size_t i = 0; i < n8; ++i) {
-      n0_[i] = double(tf_.interval(s0_[i]) + 1);
-      n1_[i] = double(tf_.interval(s1_[i]) + 1);
+    for (size_t i = 0; i < n16; ++i) {
+      n0_[i] = double(tf_.interval(s0[i]) + 1);
+      n1_[i] = double(tf_.interval(s1[i]) + 1);
     }
     q.n0 = n0_.data();
     q.n1 = n1_.data();
   }
   switch (width_) {
-    case KernelWidth::AVX512: light::segment_lights_avx512(tf_tables_, q, n8, inv_unit_); break;
-    case KernelWidth::AVX2: light::segment_lights_avx2(tf_tables_, q, n8, inv_unit_); break;
-    case KernelWidth::Scalar: light::segment_lights_scalar(tf_tables_, q, n8, inv_unit_); break;
+    case KernelWidth::AVX512: light::segment_lights_avx512(tf_tables_, q, n16, inv_unit_, parts); break;
+    case KernelWidth::AVX2: light::segment_lights_avx2(tf_tables_, q, n16, inv_unit_, parts); break;
+    case KernelWidth::Scalar: light::segment_lights_scalar(tf_tables_, q, n16, inv_unit_, parts); break;
   }
 }
 

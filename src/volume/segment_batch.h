@@ -4,8 +4,9 @@
 // (light_kernel.h: transfer-function lookups and the piece's light, 8 or 4
 // segments at a time) and then applied to its pixels in queue order — the
 // order the segments were made, so every pixel composites exactly as it
-// would one by one. Segments the kernel cannot take (a TF breakpoint inside,
-// or the Hermite bound failing) go through SegmentIntegrator as before.
+// would one by one. Segments the one-piece kernel cannot take (a TF
+// breakpoint inside, or the Hermite bound failing on a thick piece) are
+// retried by the kernel in pieces; the few left go through SegmentIntegrator.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,8 @@ KernelWidth best_kernel_width();
 
 class SegmentBatch {
  public:
-  static constexpr size_t kCapacity = 512;  // a multiple of 8
+  static constexpr size_t kCapacity = 512;  // a multiple of 16
+  static constexpr int kSplitParts = 2;     // retried segments: 2 halves x 2 pieces
   SegmentBatch(const SegmentIntegrator& integ, const TransferFunction& tf, KernelWidth width = best_kernel_width());
 
   bool full() const { return n_ == kCapacity; }
@@ -42,6 +44,8 @@ class SegmentBatch {
 
  private:
   void run_kernel();
+  void run_pass(double* s0, double* s1, double* len, size_t n, double* r, double* g, double* b, double* T,
+                uint8_t* ok, int parts);
 
   const SegmentIntegrator& integ_;
   const TransferFunction& tf_;
@@ -50,6 +54,10 @@ class SegmentBatch {
   std::vector<uint32_t> pixel_;
   std::vector<double> s0_, s1_, len_, n0_, n1_, rgb_[3], T_;
   std::vector<uint8_t> ok_;
+  // The second pass (segments in pieces): their indices and arrays.
+  std::vector<uint32_t> retry_;
+  std::vector<double> r_s0_, r_s1_, r_len_, r_rgb_[3], r_T_;
+  std::vector<uint8_t> r_ok_;
   std::vector<double> tables_;  // TfTables' storage
   light::TfTables tf_tables_;
   double inv_unit_;
