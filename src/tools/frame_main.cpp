@@ -8,6 +8,7 @@
 //   zsweep_frame MESH.off [size=512] [frames=3] [threads=1] [scan=span] [tile=64]
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <string>
 
@@ -34,18 +35,33 @@ int main(int argc, char** argv) {
     rs.camera = auto_camera(mesh, Projection::Orthographic, size, size);
     rs.tf = default_transfer_function(mesh);
     const Topology topo = build_topology(mesh);
+    // The sum of the image, and a hash of its bits that does not depend on
+    // the order tiles arrive in (a sum of per-pixel hashes).
     struct Discard : TileSink {
       double sum = 0;
+      uint64_t bits = 0;
       void tile(const TileRect& r, const float* rgba) override {
-        for (size_t k = 0; k < size_t(r.width()) * r.height() * 4; ++k) sum += rgba[k];
+        for (uint32_t y = r.y0; y < r.y1; ++y)
+          for (uint32_t x = r.x0; x < r.x1; ++x) {
+            const float* p = rgba + (size_t(y - r.y0) * r.width() + (x - r.x0)) * 4;
+            uint64_t h = (uint64_t(y) << 32 | x) * 0x9E3779B97F4A7C15ull;
+            for (int c = 0; c < 4; ++c) {
+              uint32_t u;
+              std::memcpy(&u, p + c, 4);
+              h = (h ^ u) * 0x100000001B3ull;
+              sum += p[c];
+            }
+            bits += h;
+          }
       }
     };
     for (int f = 0; f < frames; ++f) {
       Discard sink;
       RenderStats st;
       render_zsweep_tiles(mesh, topo, rs, sink, 0, &st);
-      std::printf("frame %d: %.2f ms (setup %.2f: order %.2f, bins %.2f), %llu fragments, %llu segments, checksum %.9g\n", f, st.ms_total,
-                  st.ms_setup, st.ms_order, st.ms_binning, (unsigned long long)st.fragments, (unsigned long long)st.segments, sink.sum);
+      std::printf("frame %d: %.2f ms (setup %.2f: order %.2f, bins %.2f), %llu fragments, %llu segments, checksum %.9g, bits %016llx\n", f, st.ms_total,
+                  st.ms_setup, st.ms_order, st.ms_binning, (unsigned long long)st.fragments, (unsigned long long)st.segments, sink.sum,
+                  (unsigned long long)sink.bits);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "zsweep_frame: %s\n", e.what());
