@@ -5,11 +5,11 @@
 namespace zs {
 
 void VertexHeap::push(double z, uint32_t v) {
-  a_.push_back({z, v});
+  a_.push_back(key(z, v));
   size_t i = a_.size() - 1;
   while (i > 0) {
     const size_t p = (i - 1) / 2;
-    if (!less(a_[i], a_[p])) break;
+    if (!(a_[i] < a_[p])) break;
     std::swap(a_[i], a_[p]);
     i = p;
   }
@@ -20,16 +20,17 @@ void VertexHeap::sift_down(size_t i) {
   for (;;) {
     const size_t l = 2 * i + 1, r = l + 1;
     size_t m = i;
-    if (l < n && less(a_[l], a_[m])) m = l;
-    if (r < n && less(a_[r], a_[m])) m = r;
+    if (l < n && a_[l] < a_[m]) m = l;
+    if (r < n && a_[r] < a_[m]) m = r;
     if (m == i) return;
     std::swap(a_[i], a_[m]);
     i = m;
   }
 }
 
-void VertexHeap::assign(std::vector<Entry> entries) {
-  a_ = std::move(entries);
+void VertexHeap::assign(const std::vector<Entry>& entries) {
+  a_.resize(entries.size());
+  for (size_t k = 0; k < entries.size(); ++k) a_[k] = key(entries[k].z, entries[k].v);
   for (size_t i = a_.size() / 2; i-- > 0;) sift_down(i);
 }
 
@@ -38,25 +39,25 @@ void VertexHeap::assign(std::vector<Entry> entries) {
 // last entry is sifted up from there — usually a level or two, as it came
 // from the bottom.
 VertexHeap::Entry VertexHeap::pop() {
-  const Entry top = a_.front();
-  const Entry last = a_.back();
+  const Key top = a_.front();
+  const Key last = a_.back();
   a_.pop_back();
   const size_t n = a_.size();
-  if (n == 0) return top;
+  if (n == 0) return entry(top);
   size_t i = 0;
   for (size_t l = 1; l < n; l = 2 * i + 1) {
-    const size_t c = (l + 1 < n && less(a_[l + 1], a_[l])) ? l + 1 : l;
+    const size_t c = (l + 1 < n && a_[l + 1] < a_[l]) ? l + 1 : l;
     a_[i] = a_[c];
     i = c;
   }
   while (i > 0) {
     const size_t p = (i - 1) / 2;
-    if (!less(last, a_[p])) break;
+    if (!(last < a_[p])) break;
     a_[i] = a_[p];
     i = p;
   }
   a_[i] = last;
-  return top;
+  return entry(top);
 }
 
 }  // namespace zs
