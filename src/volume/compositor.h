@@ -59,14 +59,13 @@ class Compositor {
   }
 
   // After a fragment: the inside count and where the next segment starts.
+  // An entry adds one (saturating), an exit removes one but never below zero
+  // (an exit with no matching entry — a ray grazing a silhouette vertex or
+  // edge, which has zero length inside — must not go negative); branch-free,
+  // as the kind is as good as random.
   static void step_past(PixelRecord& px, float z, float s, uint32_t kind) {
-    if (kind == kEntry) {
-      if (px.inside < INT16_MAX) ++px.inside;
-    } else if (kind == kExit) {
-      // Clamped: an exit with no matching entry (a ray grazing a silhouette
-      // vertex or edge, which has zero length inside) must not go negative.
-      if (px.inside > 0) --px.inside;
-    }
+    const int inside = int(px.inside) + int(kind) - int(kInterior);
+    px.inside = int16_t(inside < 0 ? 0 : inside > INT16_MAX ? INT16_MAX : inside);
     px.last_z = z;
     px.last_s = s;
   }

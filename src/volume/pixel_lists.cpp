@@ -26,11 +26,7 @@ bool PixelLists::insert_sorted(PixelRecord& px, float z, float s, uint32_t kind)
   int p = px.n;
   if (p == kInline) {
     // Full: the fragment, or the deepest inline one, goes to the overflow list.
-    if (before(px.z[kInline - 1], px.kind(kInline - 1), z, kind)) {
-      if (!overflow_insert(px, z, s, kind)) return false;
-      if (px.len != UINT16_MAX) ++px.len;
-      return true;
-    }
+    if (before(px.z[kInline - 1], px.kind(kInline - 1), z, kind)) return overflow_insert(px, z, s, kind);
     if (!overflow_push_front(px, px.z[kInline - 1], px.s[kInline - 1], px.kind(kInline - 1))) return false;
     p = kInline - 1;
   } else {
@@ -47,13 +43,13 @@ bool PixelLists::insert_sorted(PixelRecord& px, float z, float s, uint32_t kind)
   // Kinds at and above p move up one slot (the one past the end drops out).
   const uint32_t low = (1u << (2 * p)) - 1;
   px.kinds = uint16_t(((px.kinds & low) | ((px.kinds & ~low) << 2) | (kind << (2 * p))) & 0xffu);
-  if (px.len != UINT16_MAX) ++px.len;
   return true;
 }
 
 bool PixelLists::overflow_insert(PixelRecord& px, float z, float s, uint32_t kind) {
   uint32_t idx;
   if (!alloc(&idx)) return false;
+  if (px.ovf != UINT16_MAX) ++px.ovf;
   Fragment& f = data_[idx];
   f.z = z;
   f.s = s;
@@ -80,6 +76,7 @@ bool PixelLists::overflow_insert(PixelRecord& px, float z, float s, uint32_t kin
 bool PixelLists::overflow_push_front(PixelRecord& px, float z, float s, uint32_t kind) {
   uint32_t idx;
   if (!alloc(&idx)) return false;
+  if (px.ovf != UINT16_MAX) ++px.ovf;
   data_[idx] = {z, s, px.head, kind};
   if (px.head == kNil) px.tail = idx;
   px.head = idx;
@@ -96,8 +93,9 @@ void PixelLists::refill(PixelRecord& px) {
     ++px.n;
     px.head = f.next;
     release(idx);
+    if (px.ovf != UINT16_MAX) --px.ovf;  // once saturated, stays so until empty
   }
-  if (px.head == kNil) px.tail = kNil;
+  if (px.head == kNil) px.tail = kNil, px.ovf = 0;
 }
 
 }  // namespace zs

@@ -48,19 +48,21 @@ struct alignas(64) PixelRecord {
   uint16_t done;          // early-terminated: nothing behind matters
   uint16_t active;        // listed in the tile's active pixels
   int16_t inside;         // entries minus exits (compositor.h), saturating
-  uint16_t len;           // pending fragments in all, saturating at 65535
+  uint16_t ovf;           // fragments in the overflow list, saturating at 65535
   float last_z, last_s;   // the previous fragment: where the next segment starts
   uint32_t head, tail;    // overflow list, kNil when empty
   // Line 2: premultiplied colour and transmittance so far, front to back.
   alignas(64) double rgb[3];
   double T;
   uint32_t kind(int i) const { return (kinds >> (2 * i)) & 3u; }
+  // Pending fragments in all (a saturated overflow count stays so until empty).
+  uint32_t pending() const { return uint32_t(n) + ovf; }
   void reset() {
     z[0] = INFINITY;
     kinds = 0;
     n = done = active = 0;
     inside = 0;
-    len = 0;
+    ovf = 0;
     last_z = last_s = 0;
     head = tail = kNil;
     rgb[0] = rgb[1] = rgb[2] = 0;
@@ -85,7 +87,6 @@ class PixelLists {
       px.s[n] = s;
       px.kinds = uint16_t(px.kinds | (kind << (2 * n)));
       px.n = uint16_t(n + 1);
-      if (px.len != UINT16_MAX) ++px.len;
       return true;
     }
     return insert_sorted(px, z, s, kind);
@@ -106,12 +107,7 @@ class PixelLists {
     px.n = uint16_t(n - k);
     live_ -= size_t(k);
     if (px.head != kNil) refill(px);
-    if (px.n == 0) {
-      px.z[0] = INFINITY;
-      px.len = 0;
-    } else if (px.len != UINT16_MAX) {
-      px.len = uint16_t(px.len - k);  // once saturated, stays so until empty
-    }
+    if (px.n == 0) px.z[0] = INFINITY;
   }
   void clear(PixelRecord& px) {
     while (px.n > 0) drop_front(px, px.n);

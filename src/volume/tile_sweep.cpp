@@ -132,8 +132,8 @@ class TileSweep {
       ws_.active.push_back(p);
     }
     ++fc.inserted;
-    fc.max_len = std::max<uint32_t>(fc.max_len, px.len);
-    if (max_list_length && px.len > max_list_length) {
+    fc.max_len = std::max<uint32_t>(fc.max_len, px.pending());
+    if (max_list_length && px.pending() > max_list_length) {
       ++S_.forced_composites;  // force this pixel's final fragments out now
       composite_pixel(px, p, X, Y, z_sweep);
     }
@@ -252,15 +252,15 @@ class TileSweep {
     const double r_c = st.r_c, r_gx = st.r_gx, r_gy = st.r_gy;
     const double z_lo = st.z_lo, z_hi = st.z_hi, s_lo = st.s_lo, s_hi = st.s_hi;
     for (const RowSpan& r : ws_.spans.rows) {
-      const uint32_t row = uint32_t(r.y - vp_.y0) * vw_;
+      const uint32_t row = uint32_t(r.y - vp_.y0) * vw_ - uint32_t(vp_.x0);
       const double dy = double(r.y) - y0;
+      const double q_row = q_gy * dy, r_row = r_gy * dy;
       for (int32_t i = r.x0; i <= r.x1; ++i) {
-        // ScreenTriangle::attributes, orthographic.
+        // ScreenTriangle::attributes, orthographic: (c + gx·dx) + gy·dy.
         const double dx = double(i) - x0;
-        const double zz = q_c + q_gx * dx + q_gy * dy;
-        const double ss = r_c + r_gx * dx + r_gy * dy;
-        const float z = float(std::clamp(zz, z_lo, z_hi) - z_origin), s = float(std::clamp(ss, s_lo, s_hi));
-        const uint32_t p = row + uint32_t(i - vp_.x0);
+        const float z = float(std::clamp((q_c + q_gx * dx) + q_row, z_lo, z_hi) - z_origin);
+        const float s = float(std::clamp((r_c + r_gx * dx) + r_row, s_lo, s_hi));
+        const uint32_t p = row + uint32_t(i);
         PixelRecord& px = px0[p];
         if (px.z[0] < z_sweep) comp_.composite_batched(px, p, lists, z_sweep, 1.0);
         if (!lists.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep, fc.inserted);
@@ -268,9 +268,9 @@ class TileSweep {
           px.active = 1;
           ws_.active.push_back(p);
         }
-        ++fc.inserted;
-        fc.max_len = std::max<uint32_t>(fc.max_len, px.len);
+        fc.max_len = std::max<uint32_t>(fc.max_len, px.pending());
       }
+      fc.inserted += uint64_t(r.x1 - r.x0 + 1);
     }
     end_face(fc);
   }
