@@ -129,6 +129,12 @@ struct ImageTileWriter::Impl {
   Impl(const std::string& p, const TileGrid& g) : path(p), grid(g), out(p) {
     if (grid.width == 0 || grid.height == 0 || grid.size == 0)
       throw std::runtime_error(path + ": cannot write an empty image");
+    // OpenEXR compresses on a pool of one thread per core by default, next to
+    // the render's own threads: with --threads 1 the file would quietly use
+    // every core. Compress in the writing thread instead (the sink relay
+    // lets the other render threads go on meanwhile), so --threads N means
+    // N cores.
+    OIIO::attribute("exr_threads", -1);
     file = OIIO::ImageOutput::create(path);
     if (!file) throw std::runtime_error(path + ": unsupported image format: " + one_line(OIIO::geterror()));
     const std::string fmt = file->format_name();
