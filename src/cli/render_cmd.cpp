@@ -86,7 +86,8 @@ void write_stats(const std::string& path, const RenderStats& S, const Scene& sce
 // a whole frame (setup included), as a viewer re-rendering a new view would:
 // benchmarks time steady-state frames in one process (no loader, no cold
 // page faults) and report the best.
-void run(const SceneArgs& a, const std::string& out_path, const std::string& stats_path, int frames) {
+void run(const SceneArgs& a, const std::string& out_path, const std::string& stats_path, int frames,
+         const std::string& compression) {
   using Clock = std::chrono::steady_clock;
   SceneInput in = a.load();
   RenderSettings& rs = in.scene.settings;
@@ -99,7 +100,7 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
   if (render_mpi_enabled()) {
     std::unique_ptr<ImageTileWriter> w;
     if (render_mpi_rank() == 0)
-      w = std::make_unique<ImageTileWriter>(out_path, TileGrid{rs.width, rs.height, rs.tile_size});
+      w = std::make_unique<ImageTileWriter>(out_path, TileGrid{rs.width, rs.height, rs.tile_size}, compression);
     RenderStats st;
     render_mpi(in.mesh, topo, rs, w.get(), w ? w->buffer_bytes_estimate() : 0, &st);
     if (!w) return;
@@ -117,7 +118,7 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
   // bands) and stills larger than memory work. The writer opens first, so an
   // unwritable path fails before the render, and its buffers count against
   // the budget; nothing appears under out_path unless commit() succeeds.
-  ImageTileWriter writer(out_path, TileGrid{rs.width, rs.height, rs.tile_size});
+  ImageTileWriter writer(out_path, TileGrid{rs.width, rs.height, rs.tile_size}, compression);
   struct Discard : TileSink {
     void tile(const TileRect&, const float*) override {}
   } discard;
@@ -150,6 +151,7 @@ void add_render_command(CLI::App& app) {
   auto a = std::make_shared<SceneArgs>();
   auto out = std::make_shared<std::string>(), stats = std::make_shared<std::string>();
   auto frames = std::make_shared<int>(1);
+  auto compression = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (.json), a mesh, or the embedded default scene");
   a->add_options(*cmd, true);
   cmd->add_option("-o,--output", *out, "Output image: .png (8-bit), .exr or .tif (float)")->required();
@@ -158,8 +160,11 @@ void add_render_command(CLI::App& app) {
                   "Render N whole frames (setup included) in one process and write the last; --stats reports "
                   "the best frame's time (steady-state benchmarks)")
       ->check(CLI::Range(1, 100000));
+  cmd->add_option("--compression", *compression,
+                  "EXR/TIFF compression (lossless): EXR rle (default: fast), zip (smaller files, ~6x slower to "
+                  "write), zips, piz, none; TIFF zip (default), lzw, packbits, none");
   add_render_mpi_options(*cmd);  // --mpi, --mpi-schedule (src/cli/render_mpi.h)
-  cmd->callback([a, out, stats, frames] { run(*a, *out, *stats, *frames); });
+  cmd->callback([a, out, stats, frames, compression] { run(*a, *out, *stats, *frames, *compression); });
 }
 
 }  // namespace zs

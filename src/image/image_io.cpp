@@ -1,6 +1,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <string>
+#include <vector>
 #include <stdexcept>
 
 #include "image/image.h"
@@ -8,13 +10,29 @@
 
 namespace zs {
 
-void write_image(const std::string& path, const Image& img) {
-  AtomicFile out(path);
+std::string output_compression(const std::string& format, const std::string& requested, const std::string& path) {
+  static const std::vector<std::string> exr = {"none", "rle", "zips", "zip", "piz", "pxr24", "b44", "b44a", "dwaa", "dwab"};
+  static const std::vector<std::string> tiff = {"none", "lzw", "zip", "packbits"};
+  const std::vector<std::string>* names = format == "openexr" ? &exr : format == "tiff" ? &tiff : nullptr;
+  if (requested.empty()) return format == "openexr" ? "rle" : "";
+  if (!names) throw std::runtime_error(path + ": --compression applies to .exr and .tif outputs only");
+  if (std::find(names->begin(), names->end(), requested) == names->end()) {
+    std::string list;
+    for (const auto& n : *names) list += (list.empty() ? "" : ", ") + n;
+    throw std::runtime_error(path + ": unknown compression \"" + requested + "\" (" + format + ": " + list + ")");
+  }
+  return requested;
+}
+
+void write_image(const std::string& path, const Image& img, const std::string& compression) {
   auto file = OIIO::ImageOutput::create(path);
   if (!file) throw std::runtime_error(path + ": unsupported image format: " + OIIO::geterror());
   const std::string fmt = file->format_name();
+  const std::string comp = output_compression(fmt, compression, path);
+  AtomicFile out(path);
   const bool is_float = fmt == "openexr" || fmt == "tiff";
   OIIO::ImageSpec spec(int(img.width), int(img.height), 4, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  if (!comp.empty()) spec.attribute("compression", comp);
   spec.attribute("oiio:ColorSpace", "Linear");
   // Store our values as they are: OIIO would otherwise un-premultiply
   // before writing a PNG (whose alpha is unassociated by definition).

@@ -1,5 +1,7 @@
 #include "image/tile_writer.h"
 
+#include "image/image.h"
+
 #include <OpenImageIO/imageio.h>
 
 #include <OpenImageIO/filesystem.h>
@@ -126,7 +128,7 @@ struct ImageTileWriter::Impl {
   uint64_t held = 0, peak = 0;
   bool committed = false;
 
-  Impl(const std::string& p, const TileGrid& g) : path(p), grid(g), out(p) {
+  Impl(const std::string& p, const TileGrid& g, const std::string& compression) : path(p), grid(g), out(p) {
     if (grid.width == 0 || grid.height == 0 || grid.size == 0)
       throw std::runtime_error(path + ": cannot write an empty image");
     // OpenEXR compresses on a pool of one thread per core by default, next to
@@ -143,6 +145,8 @@ struct ImageTileWriter::Impl {
     OIIO::ImageSpec spec(int(grid.width), int(grid.height), 4, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "Linear");
     spec.attribute("oiio:UnassociatedAlpha", 1);
+    const std::string comp = output_compression(fmt, compression, path);
+    if (!comp.empty()) spec.attribute("compression", comp);
     // libtiff refuses tile sizes that are not multiples of 16; such renders
     // go to a striped TIFF through the band path instead.
     tiled = is_float && file->supports("tiles") && (fmt != "tiff" || grid.size % 16 == 0);
@@ -284,8 +288,8 @@ struct ImageTileWriter::Impl {
   }
 };
 
-ImageTileWriter::ImageTileWriter(const std::string& path, const TileGrid& grid)
-    : impl_(std::make_unique<Impl>(path, grid)) {}
+ImageTileWriter::ImageTileWriter(const std::string& path, const TileGrid& grid, const std::string& compression)
+    : impl_(std::make_unique<Impl>(path, grid, compression)) {}
 
 ImageTileWriter::~ImageTileWriter() = default;
 

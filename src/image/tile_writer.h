@@ -23,9 +23,10 @@ namespace zs {
 
 class ImageTileWriter : public TileSink {
  public:
-  // Opens the output (a temporary beside `path`) for an image cut as `grid`.
-  // Throws std::runtime_error naming the file.
-  ImageTileWriter(const std::string& path, const TileGrid& grid);
+  // Opens the output (a temporary beside `path`) for an image cut as `grid`,
+  // with `compression` for EXR/TIFF (output_compression, image.h; "" = our
+  // default). Throws std::runtime_error naming the file.
+  ImageTileWriter(const std::string& path, const TileGrid& grid, const std::string& compression = "");
   ~ImageTileWriter() override;
   ImageTileWriter(const ImageTileWriter&) = delete;
   ImageTileWriter& operator=(const ImageTileWriter&) = delete;
