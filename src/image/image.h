@@ -24,10 +24,10 @@ void write_image(const std::string& path, const Image& img, const std::string& c
 
 // The compression an EXR or TIFF output gets: `requested` when given
 // (checked against what the format offers; throws std::runtime_error naming
-// the file otherwise), else our default: lossless RLE for EXR — about 6× faster
-// to write than zip on our renders for files ~1.5× larger, and zip's cost,
-// paid by the one thread that writes, would otherwise cap multi-threaded
-// stills — and the library's own for TIFF. "" for formats without a choice.
+// the file otherwise), else our default: lossless RLE for EXR — four times
+// faster to write than zip on our renders for files 1.7–3.2× larger, and
+// zip's cost, paid by the one thread that writes, would otherwise cap
+// multi-threaded renders (docs/benchmarks.md) — and the library's own for TIFF. "" for formats without a choice.
 std::string output_compression(const std::string& format, const std::string& requested, const std::string& path);
 Image read_image(const std::string& path);
 
