@@ -25,7 +25,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // A usage error: one line like every other error, exit code 2.
+    std::cerr << "zsweep: error: " << e.what() << " (see --help)\n";
+    return 2;
   } catch (const std::exception& e) {
     // Under `render --mpi` the ranks settle a failure together (src/mpi/mpi_env.h).
     if (zs::mpi_active()) return zs::mpi_exit_on_error(e);

@@ -25,6 +25,8 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("--stats", *stats, "Write ray-casting statistics as JSON");
   cmd->callback([a, out, stats] {
     SceneInput in = a->load();
+    AtomicFile(*out).check_writable();  // before minutes of ray casting
+    if (!stats->empty()) AtomicFile(*stats).check_writable();
     const Topology topo = build_topology(in.mesh);
     ReferenceStats s;
     const Image img = render_reference(in.mesh, topo, in.scene.settings, &s);

@@ -3,6 +3,7 @@
 // default scene.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -16,6 +17,8 @@
 #include "cli/scene_args.h"
 #include "image/tile_writer.h"
 #include "mesh/topology.h"
+#include "mesh/validate.h"
+#include "scene/camera.h"
 #include "scene/scene.h"
 #include "util/atomic_file.h"
 #include "volume/zsweep_renderer.h"
@@ -82,6 +85,37 @@ void write_stats(const std::string& path, const RenderStats& S, const Scene& sce
   out.commit();
 }
 
+// Input that renders, but not as the user likely meant: one warning line
+// each on stderr; the image is still written and the exit code is 0.
+void warn_nonfinite(const SceneInput& in) {
+  const size_t n = count_nonfinite_tets(in.mesh);
+  if (n == 0) return;
+  const std::string name = in.scene.mesh_path.empty() ? "default mesh" : in.scene.mesh_path;
+  std::fprintf(stderr, "zsweep: warning: %s: %zu of %zu tets have a non-finite coordinate or scalar; they are left out\n",
+               name.c_str(), n, in.mesh.num_tets());
+}
+
+void warn_if_empty(const SceneInput& in, const RenderStats& st, const std::string& out_path) {
+  if (st.rendered_pixels > 0) return;
+  const RenderSettings& rs = in.scene.settings;
+  const View view(rs.camera, rs.width, rs.height);
+  bool in_front = false, any_depth = false;
+  for (const glm::dvec3& p : in.mesh.points) {
+    const double z = view.project(p).z;
+    any_depth |= std::isfinite(z);
+    in_front |= z > 0;
+  }
+  const size_t tets = in.mesh.num_tets();
+  const char* why = !any_depth ? "the camera cannot resolve the mesh at this scale (depths are not finite)"
+                    : !in_front                                      ? "the whole mesh is behind the camera"
+                    : count_nonfinite_tets(in.mesh) == tets          ? "every tet has a non-finite coordinate or scalar"
+                    : st.tets_invisible + st.tets_degenerate >= tets ? "the transfer function's opacity is zero "
+                                                                       "wherever the mesh is (or its cells are flat)"
+                    : st.faces_projected == 0                        ? "the mesh is outside the view"
+                                                                     : "no fragment reached a pixel";
+  std::fprintf(stderr, "zsweep: warning: %s: the image is empty: %s\n", out_path.c_str(), why);
+}
+
 // Renders `frames - 1` untimed-for-output frames before the written one, each
 // a whole frame (setup included), as a viewer re-rendering a new view would:
 // benchmarks time steady-state frames in one process (no loader, no cold
@@ -90,11 +124,18 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
          const std::string& compression) {
   using Clock = std::chrono::steady_clock;
   SceneInput in = a.load();
+  if (!stats_path.empty()) AtomicFile(stats_path).check_writable();  // not after the render
+  warn_nonfinite(in);
   RenderSettings& rs = in.scene.settings;
   rs.face_area_stats = !stats_path.empty();
   const auto t1 = Clock::now();
   const Topology topo = build_topology(in.mesh);
   const auto t2 = Clock::now();
+  // The budget before the output opens: the file library allocates its tile
+  // tables then (2 GiB for a 1048576² EXR), and an image the format cannot
+  // hold is refused here too.
+  check_memory_budget(in.mesh, topo, rs,
+                      ImageTileWriter::buffer_bytes_estimate(out_path, TileGrid{rs.width, rs.height, rs.tile_size}));
   // ---- MPI: `render --mpi` (src/cli/render_mpi.h). Every rank sweeps a share
   // of the tiles into rank 0's writer; rank 0 alone writes and prints. ----
   if (render_mpi_enabled()) {
@@ -105,6 +146,7 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
     render_mpi(in.mesh, topo, rs, w.get(), w ? w->buffer_bytes_estimate() : 0, &st);
     if (!w) return;
     w->commit();
+    warn_if_empty(in, st, out_path);
     if (!stats_path.empty())
       write_stats(stats_path, st, in.scene, in.mesh, in.ms_load,
                   std::chrono::duration<double, std::milli>(t2 - t1).count());
@@ -135,6 +177,7 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
   stats.ms_total = stats.ms_setup;
   renderer.render_tiles(writer, nullptr, &stats);
   writer.commit();
+  warn_if_empty(in, stats, out_path);
   frame_ms.push_back(stats.ms_total);
   if (frames > 1) stats.ms_total = *std::min_element(frame_ms.begin(), frame_ms.end());
   if (!stats_path.empty())
@@ -161,8 +204,9 @@ void add_render_command(CLI::App& app) {
                   "the best frame's time (steady-state benchmarks)")
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--compression", *compression,
-                  "EXR/TIFF compression (lossless): EXR rle (default: fast), zip (smaller files, ~6x slower to "
-                  "write), zips, piz, none; TIFF zip (default), lzw, packbits, none");
+                  "EXR/TIFF compression. EXR lossless: rle (default: fast), zip (smaller files, ~6x slower to "
+                  "write), zips, piz, none; EXR lossy: pxr24, b44, b44a, dwaa, dwab. TIFF (lossless): zip "
+                  "(default), lzw, packbits, none");
   add_render_mpi_options(*cmd);  // --mpi, --mpi-schedule (src/cli/render_mpi.h)
   cmd->callback([a, out, stats, frames, compression] { run(*a, *out, *stats, *frames, *compression); });
 }

@@ -17,11 +17,11 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
   cmd.add_option("--width", width, "Override image width")->check(CLI::Range(1u, 1u << 20));
   cmd.add_option("--height", height, "Override image height")->check(CLI::Range(1u, 1u << 20));
   cmd.add_option("--projection", projection, "Automatic camera: orthographic (default) or perspective");
+  cmd.add_option("--memory-budget", memory_budget_mb, "Memory budget in MiB (default: half of physical memory)");
   if (!engine_knobs) return;
   cmd.add_option("--scan", scan, "Scan strategy: span (default), bbox (same image, slower), bconvert");
   cmd.add_option("--variant", variant, "B-Convert variant: truncate, round, dilate, dda3d, runlength");
   cmd.add_option("--integrator", integrator, "exact, linear, preintegrated or taylor2");
-  cmd.add_option("--memory-budget", memory_budget_mb, "Memory budget in MiB (default: half of physical memory)");
   cmd.add_option("--early-termination", early_termination, "Stop a pixel below t/510 transmittance (t in 8-bit levels)");
   cmd.add_option("--max-list-length", max_list_length, "Force compositing when a pixel list grows past this");
   cmd.add_option("--tile-size", tile_size, "Screen tile size in pixels (default 64); the image does not depend on it")

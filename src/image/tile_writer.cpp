@@ -35,6 +35,59 @@ inline uint8_t quantize(float v) { return uint8_t(std::clamp(v, 0.f, 1.f) * 255.
 // cannot be counted on), so the file is written as BigTIFF.
 constexpr uint64_t kBigTiffBytes = uint64_t(2) << 30;
 
+// libpng refuses images wider or taller than this (its default user limit).
+constexpr uint32_t kPngMaxSide = 1000000;
+
+// How an output format takes the engine's tiles, decided before anything is
+// opened, so the memory budget can be checked first.
+struct Layout {
+  std::string fmt;
+  bool is_float = false;
+  bool tiled = false;         // the file is tiled (tiles or whole bands of tiles go in)
+  bool random_order = false;  // tiles go to disk as they arrive
+  uint64_t pixel_bytes() const { return is_float ? 16 : 4; }
+};
+
+Layout layout_for(OIIO::ImageOutput& file, const std::string& path, const TileGrid& grid) {
+  if (grid.width == 0 || grid.height == 0 || grid.size == 0) throw std::runtime_error(path + ": cannot write an empty image");
+  Layout L;
+  L.fmt = file.format_name();
+  // The formats and attributes write_image() uses, so both store the same values.
+  L.is_float = L.fmt == "openexr" || L.fmt == "tiff";
+  if (L.fmt == "png" && (grid.width > kPngMaxSide || grid.height > kPngMaxSide))
+    throw std::runtime_error(path + ": PNG is limited to " + std::to_string(kPngMaxSide) +
+                             " pixels per side (libpng); write .exr or .tif");
+  // libtiff refuses tile sizes that are not multiples of 16; such renders
+  // go to a striped TIFF through the band path instead.
+  L.tiled = L.is_float && file.supports("tiles") && (L.fmt != "tiff" || grid.size % 16 == 0);
+  // OpenEXR says so only once open with line order randomY, which the
+  // writer always sets; the writer asks the opened file again.
+  L.random_order = L.tiled && (L.fmt == "openexr" || file.supports("random_access"));
+  return L;
+}
+
+uint64_t estimate_bytes(const Layout& L, const TileGrid& grid) {
+  const uint64_t n = grid.count();
+  // The arrival bitmap, and the per-tile offset and size tables the file
+  // library keeps until close.
+  uint64_t bytes = n / 8 + 1 + n * 16;
+  if (L.random_order) {
+    // The library's padded copy of a tile and its compression scratch.
+    bytes += 4 * uint64_t(grid.size) * grid.size * 16;
+  } else {
+    // Tiles arrive roughly row-major from a few threads: the band being
+    // filled, the next one, and one of slack for a slow tile.
+    bytes += 3 * uint64_t(grid.width) * std::min(grid.size, grid.height) * L.pixel_bytes();
+  }
+  return bytes;
+}
+
+std::unique_ptr<OIIO::ImageOutput> create_output(const std::string& path) {
+  auto file = OIIO::ImageOutput::create(path);
+  if (!file) throw std::runtime_error(path + ": unsupported image format: " + one_line(OIIO::geterror()));
+  return file;
+}
+
 // The file under a sequential (PNG) writer. OIIO's PNG writer ignores
 // failed writes, so this remembers them; and an abandoned image is finished
 // into the void (discard) so that nothing but the temporary is lost.
@@ -118,9 +171,8 @@ struct ImageTileWriter::Impl {
   std::unique_ptr<CheckedFile> proxy;  // sequential 8-bit formats only
   std::unique_ptr<OIIO::ImageOutput> file;
   uint64_t header_writes = 0;  // proxy writes before the first row
-  bool is_float = false;
-  bool tiled = false;         // the file is tiled (tiles or whole bands of tiles go in)
-  bool random_order = false;  // tiles go to disk as they arrive
+  Layout layout;
+  bool is_float = false, tiled = false, random_order = false;  // layout's, for brevity
   std::vector<bool> received;
   uint32_t received_count = 0;
   std::map<uint32_t, Band> bands;  // by tile row, only for !random_order
@@ -129,27 +181,21 @@ struct ImageTileWriter::Impl {
   bool committed = false;
 
   Impl(const std::string& p, const TileGrid& g, const std::string& compression) : path(p), grid(g), out(p) {
-    if (grid.width == 0 || grid.height == 0 || grid.size == 0)
-      throw std::runtime_error(path + ": cannot write an empty image");
     // OpenEXR compresses on a pool of one thread per core by default, next to
     // the render's own threads: with --threads 1 the file would quietly use
     // every core. Compress in the writing thread instead (the sink relay
     // lets the other render threads go on meanwhile), so --threads N means
     // N cores.
     OIIO::attribute("exr_threads", -1);
-    file = OIIO::ImageOutput::create(path);
-    if (!file) throw std::runtime_error(path + ": unsupported image format: " + one_line(OIIO::geterror()));
-    const std::string fmt = file->format_name();
-    // The formats and attributes write_image() uses, so both store the same values.
-    is_float = fmt == "openexr" || fmt == "tiff";
+    file = create_output(path);
+    layout = layout_for(*file, path, grid);
+    const std::string& fmt = layout.fmt;
+    is_float = layout.is_float, tiled = layout.tiled, random_order = layout.random_order;
     OIIO::ImageSpec spec(int(grid.width), int(grid.height), 4, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "Linear");
     spec.attribute("oiio:UnassociatedAlpha", 1);
     const std::string comp = output_compression(fmt, compression, path);
     if (!comp.empty()) spec.attribute("compression", comp);
-    // libtiff refuses tile sizes that are not multiples of 16; such renders
-    // go to a striped TIFF through the band path instead.
-    tiled = is_float && file->supports("tiles") && (fmt != "tiff" || grid.size % 16 == 0);
     if (tiled) {
       spec.tile_width = spec.tile_height = int(grid.size);
       spec.tile_depth = 1;
@@ -165,7 +211,7 @@ struct ImageTileWriter::Impl {
     }
     if (!file->open(out.temp_path(), spec)) throw std::runtime_error(path + ": cannot write: " + one_line(file->geterror()));
     if (proxy) header_writes = proxy->writes();
-    random_order = tiled && file->supports("random_access");
+    random_order = layout.random_order = tiled && file->supports("random_access");
     received.assign(grid.count(), false);
   }
 
@@ -295,21 +341,11 @@ ImageTileWriter::~ImageTileWriter() = default;
 
 void ImageTileWriter::tile(const TileRect& r, const float* rgba) { impl_->tile(r, rgba); }
 
-uint64_t ImageTileWriter::buffer_bytes_estimate() const {
-  const Impl& m = *impl_;
-  const uint64_t n = m.grid.count();
-  // The arrival bitmap, and the per-tile offset and size tables the file
-  // library keeps until close.
-  uint64_t bytes = n / 8 + 1 + n * 16;
-  if (m.random_order) {
-    // The library's padded copy of a tile and its compression scratch.
-    bytes += 4 * uint64_t(m.grid.size) * m.grid.size * 16;
-  } else {
-    // Tiles arrive roughly row-major from a few threads: the band being
-    // filled, the next one, and one of slack for a slow tile.
-    bytes += 3 * uint64_t(m.grid.width) * std::min(m.grid.size, m.grid.height) * m.pixel_bytes();
-  }
-  return bytes;
+uint64_t ImageTileWriter::buffer_bytes_estimate() const { return estimate_bytes(impl_->layout, impl_->grid); }
+
+uint64_t ImageTileWriter::buffer_bytes_estimate(const std::string& path, const TileGrid& grid) {
+  auto file = create_output(path);
+  return estimate_bytes(layout_for(*file, path, grid), grid);
 }
 
 uint64_t ImageTileWriter::peak_buffer_bytes() const { return impl_->peak; }

@@ -38,6 +38,11 @@ class ImageTileWriter : public TileSink {
   // What the writer expects to hold while the engine delivers tiles in
   // roughly row-major order, for the caller's memory budget.
   uint64_t buffer_bytes_estimate() const;
+  // The same for a writer not yet opened (nothing is opened or allocated), so
+  // the caller can check its budget before the file library allocates its
+  // tables; also rejects an image the format cannot hold. Throws
+  // std::runtime_error naming the file.
+  static uint64_t buffer_bytes_estimate(const std::string& path, const TileGrid& grid);
   // The most it actually held (band buffers; tiled formats hold none).
   uint64_t peak_buffer_bytes() const;
   // True when written as a tiled file, false when in scanline bands.

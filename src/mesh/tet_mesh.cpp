@@ -12,7 +12,12 @@ double signed_volume6(const TetMesh& m, const Tet& t) {
                   glm::cross(m.points[t[2]] - a, m.points[t[3]] - a));
 }
 
-double Bounds::diagonal() const { return empty ? 0.0 : glm::length(hi - lo); }
+double Bounds::half_diagonal() const {
+  if (empty) return 0.0;
+  const glm::dvec3 e = 0.5 * hi - 0.5 * lo;  // no overflow: each half is finite
+  const double m = std::max(e.x, std::max(e.y, e.z));
+  return m > 0 ? m * glm::length(e / m) : 0.0;
+}
 
 Bounds bounds_of(const TetMesh& m) {
   Bounds b;

@@ -36,7 +36,11 @@ double signed_volume6(const TetMesh& m, const Tet& t);
 struct Bounds {
   glm::dvec3 lo{0.0}, hi{0.0};
   bool empty = true;
-  double diagonal() const;
+  // Half the diagonal, and the centre: computed so that coordinates near the
+  // largest double do not overflow (the full diagonal may still be inf).
+  double half_diagonal() const;
+  double diagonal() const { return 2.0 * half_diagonal(); }
+  glm::dvec3 centre() const { return empty ? glm::dvec3(0.0) : 0.5 * lo + 0.5 * hi; }
 };
 Bounds bounds_of(const TetMesh& m);
 

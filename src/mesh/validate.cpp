@@ -101,6 +101,17 @@ bool ValidationReport::clean() const {
          coincident_boundary_faces == 0;
 }
 
+size_t count_nonfinite_tets(const TetMesh& m) {
+  size_t n = 0;
+  for (const Tet& t : m.tets)
+    for (uint32_t v : t)
+      if (!finite3(m.points[v]) || (m.has_scalars() && !std::isfinite(m.scalars[v]))) {
+        ++n;
+        break;
+      }
+  return n;
+}
+
 ValidationReport validate(const TetMesh& m, const Topology& topo, double eps) {
   ValidationReport r;
   r.zero_volume_eps = eps;

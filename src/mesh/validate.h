@@ -34,6 +34,10 @@ struct ValidationReport {
   bool clean() const;
 };
 
+// Tets with a non-finite coordinate or scalar at a vertex: the renderers
+// leave them empty (they are counted, not rendered), and the CLI warns.
+size_t count_nonfinite_tets(const TetMesh& m);
+
 ValidationReport validate(const TetMesh& m, const Topology& topo,
                           double zero_volume_eps = 1e-10);
 

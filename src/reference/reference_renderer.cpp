@@ -16,6 +16,7 @@
 #include "reference/tet_walk.h"
 #include "scene/camera.h"
 #include "volume/segment_integrator.h"
+#include "volume/zsweep_renderer.h"
 
 namespace zs {
 
@@ -36,6 +37,15 @@ Image render_reference(const TetMesh& mesh, const Topology& topo, const RenderSe
 Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs,
                             const std::vector<uint32_t>& rows_wanted, ReferenceStats* stats) {
   const auto t_start = std::chrono::steady_clock::now();
+  // The reference keeps its rows in memory: refuse what the budget cannot
+  // hold before allocating it.
+  if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
+  const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
+  const uint64_t image_bytes = uint64_t(rs.width) * rows_wanted.size() * 16;
+  if (image_bytes >= budget)
+    throw std::runtime_error("memory budget of " + std::to_string(budget >> 20) + " MiB cannot hold the reference's " +
+                             std::to_string(rs.width) + "x" + std::to_string(rows_wanted.size()) + " float image (" +
+                             std::to_string(image_bytes >> 20) + " MiB)");
   const View view(rs.camera, rs.width, rs.height);
   const SolidFaces solid = build_solid_faces(mesh, topo);
   const BoundaryBins bins(mesh, topo, solid, view);

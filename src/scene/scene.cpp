@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -114,8 +115,9 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // nlohmann reports "... at line L, column C: ..."; keep it one line.
+  } catch (const json::exception& e) {
+    // Syntax errors say "... at line L, column C: ..."; a number too large
+    // for a double (1e999) is nlohmann's out_of_range. One line either way.
     c.fail(std::string("invalid JSON: ") + e.what());
   }
   check_keys(c, j, "scene", {"mesh", "image", "camera", "transfer_function", "render"});
@@ -241,8 +243,16 @@ Camera auto_camera(const TetMesh& m, Projection projection, uint32_t width, uint
   const Bounds b = bounds_of(m);
   Camera cam;
   cam.projection = projection;
-  const glm::dvec3 c = b.empty ? glm::dvec3(0) : 0.5 * (b.lo + b.hi);
-  const double r = b.empty ? 1.0 : std::max(0.5 * b.diagonal(), 1e-300);
+  const glm::dvec3 c = b.centre();
+  const double r = b.empty ? 1.0 : std::max(b.half_diagonal(), 1e-300);
+  // The view's basis and depths square lengths of this order: beyond these
+  // they under- or overflow and every depth would be lost.
+  if (!b.empty && (r < 1e-140 || r > 1e140 || glm::length(c) > 1e140)) {
+    char msg[160];
+    std::snprintf(msg, sizeof msg, "mesh extent %.3g (centre at distance %.3g) is outside what the automatic camera "
+                  "frames (1e-140 to 1e140); give a camera or rescale the mesh", 2 * r, glm::length(c));
+    throw std::runtime_error(msg);
+  }
   const double aspect = double(width) / double(height);
   cam.target = c;
   cam.up = {0, 1, 0};
@@ -258,13 +268,21 @@ TransferFunction default_transfer_function(const TetMesh& m) {
   double lo = INFINITY, hi = -INFINITY;
   for (double s : m.scalars)
     if (std::isfinite(s)) lo = std::min(lo, s), hi = std::max(hi, s);
-  if (!(lo < hi)) {
-    lo = std::isfinite(lo) ? lo : 0.0;
-    hi = lo + 1.0;
+  if (!(lo < hi) || !std::isfinite(4.0 / (hi - lo))) {
+    // Constant (or no finite) scalars, or a range too narrow for the ramp's
+    // interpolation (subnormal widths): a ramp centred on the value, wide
+    // enough to be representable next to it, so the mesh shows mid-ramp.
+    const double v = std::isfinite(lo) ? lo : 0.0;
+    const double d = std::max(1.0, std::abs(v) * 1e-6);
+    lo = v - d, hi = v + d;
+    if (!std::isfinite(hi)) lo = v - 2 * d, hi = v;  // only next to the largest doubles
+    if (!std::isfinite(lo)) lo = v, hi = v + 2 * d;
   }
-  const double mid = 0.5 * (lo + hi);
+  const double mid = 0.5 * lo + 0.5 * hi;  // (lo + hi) / 2 overflows for scalars near the largest double
+  // Unit distance: bounding diagonal / 50, from the half so it stays finite.
+  const double unit = std::max(bounds_of(m).half_diagonal() / 25.0, 1e-300);
   return TransferFunction({{lo, 0.23, 0.30, 0.75}, {mid, 0.87, 0.87, 0.87}, {hi, 0.71, 0.02, 0.15}},
-                          {{lo, 0.0}, {hi, 0.6}}, std::max(bounds_of(m).diagonal(), 1e-300) / 50.0);
+                          {{lo, 0.0}, {hi, 0.6}}, unit);
 }
 
 }  // namespace zs

@@ -43,7 +43,14 @@ SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_op
 
 void finish_scene(SceneInput& in, Projection auto_projection) {
   RenderSettings& rs = in.scene.settings;
-  if (!in.scene.has_camera) rs.camera = auto_camera(in.mesh, auto_projection, rs.width, rs.height);
+  if (!in.scene.has_camera) {
+    try {
+      rs.camera = auto_camera(in.mesh, auto_projection, rs.width, rs.height);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error((in.scene.mesh_path.empty() ? std::string("default mesh") : in.scene.mesh_path) + ": " +
+                               e.what());
+    }
+  }
   if (!in.scene.has_transfer_function) rs.tf = default_transfer_function(in.mesh);
 }
 

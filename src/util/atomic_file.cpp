@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <random>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "mesh/mesh_error.h"
@@ -31,6 +32,15 @@ AtomicFile::~AtomicFile() {
     fs::path t(temp_);
     for (const char* ext : {".node", ".ele"}) fs::remove(fs::path(t).replace_extension(ext), ec);
   }
+}
+
+void AtomicFile::check_writable() const {
+  std::error_code ec;
+  if (fs::is_directory(final_, ec)) throw MeshError(final_, "cannot write: is a directory");
+  const int fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) throw MeshError(final_, std::string("cannot write: ") + std::strerror(errno));
+  ::close(fd);
+  ::unlink(temp_.c_str());
 }
 
 void AtomicFile::commit() {

@@ -18,6 +18,10 @@ class AtomicFile {
   // libraries choosing a format by extension still work.
   const std::string& temp_path() const { return temp_; }
   const std::string& final_path() const { return final_; }
+  // Creates and removes the temporary, so that an unwritable destination
+  // (no such directory, no permission, a directory under the final name)
+  // fails before the work that would fill it. Throws MeshError.
+  void check_writable() const;
   // Renames the temporary onto the final name; throws MeshError on failure.
   void commit();
 

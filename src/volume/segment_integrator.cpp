@@ -61,7 +61,8 @@ template <class F>
 double adaptive_gl(const F& f, double a, double b, double whole, double tol, int depth) {
   const double m = 0.5 * (a + b);
   const double l = gl8(f, a, m), r = gl8(f, m, b);
-  if (depth <= 0 || std::abs(l + r - whole) <= tol) return l + r;
+  // !(> tol) also stops on NaN, which no amount of splitting would fix.
+  if (depth <= 0 || !(std::abs(l + r - whole) > tol)) return l + r;
   return adaptive_gl(f, a, m, l, 0.5 * tol, depth - 1) + adaptive_gl(f, m, b, r, 0.5 * tol, depth - 1);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -66,7 +67,17 @@ TransferFunction::TransferFunction(std::vector<ColorPoint> color, std::vector<Op
     const auto c = this->color(b);  // the parameters shadow the members here
     at_bs_.push_back({c[0], c[1], c[2], this->opacity(b)});
   }
-  for (size_t k = 0; k + 1 < bs_.size(); ++k) inv_width_.push_back(1.0 / (bs_[k + 1] - bs_[k]));
+  for (size_t k = 0; k + 1 < bs_.size(); ++k) {
+    inv_width_.push_back(1.0 / (bs_[k + 1] - bs_[k]));
+    // Subnormal spacings overflow 1/width, and every lookup between them
+    // would be NaN (found by fuzzing the default ramp over [0, 1e-308]).
+    if (!std::isfinite(inv_width_.back())) {
+      char msg[160];
+      std::snprintf(msg, sizeof msg, "transfer_function: points at s = %.17g and s = %.17g are too close together",
+                    bs_[k], bs_[k + 1]);
+      throw std::invalid_argument(msg);
+    }
+  }
   // Runs of zero opacity: opacity is linear between its points and constant
   // outside them, so it is 0 on [p_i, p_j] exactly when every point from i
   // to j is 0, below the first point when that one is, above the last likewise.

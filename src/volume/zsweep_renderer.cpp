@@ -113,6 +113,38 @@ RenderPlan plan_render(uint64_t budget, uint64_t shared, uint32_t tile_size, int
   return p;
 }
 
+namespace {
+std::runtime_error budget_too_small(const RenderSettings& rs, uint64_t budget, uint64_t need) {
+  return std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " + std::to_string(rs.width) +
+                            "x" + std::to_string(rs.height) + " render of this mesh (needs more than " +
+                            bytes_str(need) + ")");
+}
+}  // namespace
+
+uint64_t check_memory_budget(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs, uint64_t sink_bytes) {
+  if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
+  if (rs.tile_size < 1) throw std::runtime_error("tile size must be at least 1 pixel");
+  const int threads = std::max(1, rs.threads);
+  const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
+  const TileGrid grid{rs.width, rs.height, rs.tile_size};
+  // Tile ids are 32-bit; a grid that large would not fit any budget anyway.
+  const uint64_t tiles = uint64_t(grid.cols()) * grid.rows();
+  if (tiles >= (uint64_t(1) << 32))
+    throw std::runtime_error(std::to_string(rs.width) + "x" + std::to_string(rs.height) + " in " +
+                             std::to_string(rs.tile_size) + "-pixel tiles is too many tiles; use a larger tile size");
+  // Vertices and faces, the sink, the relay's queue and the bins' per-tile
+  // offsets; the bins' entries are known only later (one per face here).
+  const uint64_t shared = zsweep_shared_bytes(mesh.num_points(), topo.num_faces()) + sink_bytes +
+                          relay_queue_tiles(rs.tile_size, threads) * uint64_t(rs.tile_size) * rs.tile_size * 16 +
+                          (tiles + 1) * 8;
+  const uint64_t need = shared + topo.num_faces() * 4;
+  if (plan_render(budget, need, rs.tile_size, threads).max_fragments == 0)
+    throw budget_too_small(rs, budget,
+                           need + uint64_t(threads) * (uint64_t(rs.tile_size) * rs.tile_size * kTilePixelBytes +
+                                                       kMinPoolFragments * 16));
+  return shared - (tiles + 1) * 8;  // the bins' offsets are counted again with their real size
+}
+
 struct ZSweepRenderer::Impl {
   const RenderSettings& rs;
   View view;
@@ -130,26 +162,16 @@ struct ZSweepRenderer::Impl {
         in{topo, settings, view, integ, {}, {}, {}, {}, {}, 0} {
     const auto t_start = Clock::now();
     RenderStats& S = setup;
-    if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
-    if (rs.tile_size < 1) throw std::runtime_error("tile size must be at least 1 pixel");
+    // Checked before anything large is allocated, with the bins counted as
+    // one entry per face; checked again once their real size is known.
+    const uint64_t shared0 = check_memory_budget(mesh, topo, rs, sink_bytes);
     grid = TileGrid{rs.width, rs.height, rs.tile_size};
     const int threads = std::max(1, rs.threads);
     const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
     S.memory_budget_bytes = budget;
     S.tile_size = rs.tile_size;
     S.tiles = grid.count();
-    auto too_small = [&](uint64_t need) {
-      return std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " +
-                                std::to_string(rs.width) + "x" + std::to_string(rs.height) +
-                                " render of this mesh (needs more than " + bytes_str(need) + ")");
-    };
     const uint64_t tile_state = uint64_t(rs.tile_size) * rs.tile_size * kTilePixelBytes;
-    // Checked before anything large is allocated, with the bins counted as
-    // one entry per face; checked again once their real size is known.
-    const uint64_t shared0 = zsweep_shared_bytes(mesh.num_points(), topo.num_faces()) + sink_bytes +
-                             relay_queue_tiles(rs.tile_size, threads) * uint64_t(rs.tile_size) * rs.tile_size * 16;
-    if (plan_render(budget, shared0 + topo.num_faces() * 4, rs.tile_size, threads).max_fragments == 0)
-      throw too_small(shared0 + topo.num_faces() * 4 + uint64_t(threads) * (tile_state + kMinPoolFragments * 16));
 
     in.sv.resize(mesh.num_points());
     double zmin = INFINITY;
@@ -197,7 +219,8 @@ struct ZSweepRenderer::Impl {
 
     const uint64_t shared = shared0 + in.bins.items.size() * 4 + in.bins.offset.size() * 8;
     plan = plan_render(budget, shared, rs.tile_size, threads);
-    if (plan.max_fragments == 0) throw too_small(shared + uint64_t(threads) * (tile_state + kMinPoolFragments * 16));
+    if (plan.max_fragments == 0)
+      throw budget_too_small(rs, budget, shared + uint64_t(threads) * (tile_state + kMinPoolFragments * 16));
     S.fragment_capacity = plan.max_fragments;
     S.ms_setup = ms_since(t_start);
   }

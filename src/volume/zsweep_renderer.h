@@ -101,6 +101,12 @@ void render_zsweep_tiles(const TetMesh& mesh, const Topology& topo, const Render
 // The whole image in memory.
 Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings, RenderStats* stats);
 
+// Throws the error a render would throw at set-up when the memory budget
+// (settings.memory_budget_bytes, 0: default) cannot hold it, before anything
+// large is allocated, for callers that open their sink (sink_bytes) only
+// afterwards. Returns the shared bytes known so far.
+uint64_t check_memory_budget(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings,
+                             uint64_t sink_bytes);
 uint64_t default_memory_budget();
 uint64_t peak_rss_bytes();
 

@@ -1,5 +1,6 @@
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -27,6 +28,20 @@ TEST(OffIo, ParsesHeaderOnOneLineWithComments) {
   EXPECT_EQ(m.points[3].z, 1.0);
   EXPECT_EQ(m.tets[0][3], 3u);
   EXPECT_DOUBLE_EQ(signed_volume6(m, m.tets[0]), 1.0);
+}
+
+// Numbers beyond a double's range are numbers still: overflow is ±inf (the
+// tet is then counted non-finite and left out), underflow is 0 or
+// subnormal. from_chars alone left them at 0 (a fuzzing finding).
+TEST(OffIo, OutOfRangeNumbersOverflowToInfinityAndUnderflowToZero) {
+  const TetMesh m = parse_off("4 1\n0 0 0 1e999\n1 0 0 -1e999\n0 1e-400 0 2\n0 0 1 +1e400\n0 1 2 3\n", "mem");
+  EXPECT_EQ(m.scalars[0], std::numeric_limits<double>::infinity());
+  EXPECT_EQ(m.scalars[1], -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(m.scalars[3], std::numeric_limits<double>::infinity());
+  EXPECT_EQ(m.points[2].y, 0.0);
+  EXPECT_EQ(count_nonfinite_tets(m), 1u);
+  const TetMesh d = parse_off("4 1\n0 0 0 4.9e-324\n1 0 0 1\n0 1 0 2\n0 0 1 3\n0 1 2 3\n", "mem");
+  EXPECT_GT(d.scalars[0], 0.0);  // the smallest subnormal is in range
 }
 
 TEST(OffIo, HeaderOnTwoLinesAndCrlf) {

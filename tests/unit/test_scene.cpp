@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "image/image.h"
+#include "mesh/io/off_io.h"
 #include "scene/scene.h"
 #include "volume/transfer_function.h"
 #include "test_paths.h"
@@ -136,6 +137,36 @@ namespace {
 // Per-tet culling (face_classes.cpp) asks transparent_over; it must agree
 // with the direct definition (max_opacity == 0) on every range, including
 // ranges touching a run's ends, single points and ranges outside the points.
+// Points closer than 1/width can represent are refused; the default ramp
+// widens such a range instead of building one (both fuzzing findings: every
+// lookup between subnormally spaced points was NaN, and the exact
+// integrator spent seconds per segment splitting NaN).
+TEST(TransferFunction, RefusesSubnormalSpacingAndDefaultRampWidens) {
+  EXPECT_THROW(TransferFunction({{0, 0, 0, 0}, {1e-310, 1, 1, 1}}, {{0, 0.5}}), std::invalid_argument);
+  EXPECT_NO_THROW(TransferFunction({{0, 0, 0, 0}, {1e-300, 1, 1, 1}}, {{0, 0.5}}));
+  TetMesh m = parse_off("4 1\n0 0 0 0\n9 0 11 1e-308\n0 1 0 0\n0 0 1 0\n0 1 2 3\n", "mem");
+  const TransferFunction tf = default_transfer_function(m);
+  for (double s : {0.0, 1e-308, 0.5})
+    for (double v : tf.rgba(s)) EXPECT_TRUE(std::isfinite(v)) << s;
+  EXPECT_GT(tf.opacity(0.0), 0.0);  // mid-ramp: a nearly constant field shows
+  // Scalars at the ends of the double range: a finite ramp, finite values.
+  m.scalars = {-1.7e308, 1.7e308, 0, 1};
+  const TransferFunction wide = default_transfer_function(m);
+  for (double s : {-1.7e308, 0.0, 1.7e308})
+    for (double v : wide.rgba(s)) EXPECT_TRUE(std::isfinite(v)) << s;
+}
+
+// Extents the automatic camera cannot frame are an error, not a NaN camera.
+TEST(Scene, AutoCameraRefusesExtremeExtents) {
+  TetMesh m = parse_off("4 1\n0 0 0 0\n1e-300 0 0 1\n0 1e-300 0 2\n0 0 1e-300 3\n0 1 2 3\n", "mem");
+  EXPECT_THROW(auto_camera(m, Projection::Orthographic, 8, 8), std::runtime_error);
+  m.points = {{0, 0, 0}, {1e150, 0, 0}, {0, 1e150, 0}, {0, 0, 1e150}};
+  EXPECT_THROW(auto_camera(m, Projection::Perspective, 8, 8), std::runtime_error);
+  m.points = {{0, 0, 0}, {1e100, 0, 0}, {0, 1e100, 0}, {0, 0, 1e100}};
+  const Camera c = auto_camera(m, Projection::Perspective, 8, 8);
+  EXPECT_TRUE(std::isfinite(c.eye.z));
+}
+
 TEST(TransferFunction, TransparentOverMatchesMaxOpacity) {
   const std::vector<ColorPoint> c = {{0, 0.2, 0.3, 0.4}, {1, 0.9, 0.8, 0.7}};
   const std::vector<std::vector<OpacityPoint>> cases = {

@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -81,10 +82,13 @@ double parse_double(const LineCursor& cur, std::string_view tok) {
   const char* e = b + tok.size();
   if (b != e && *b == '+') ++b;  // from_chars rejects a leading '+'
   auto [p, ec] = std::from_chars(b, e, v);
-  // Out-of-range values come back as ERANGE; they are real numbers in the
-  // file (e.g. 1e-400), so keep the clamped result and let validation judge.
   if ((ec != std::errc() && ec != std::errc::result_out_of_range) || p != e)
     cur.fail("expected a number, found " + quoted(tok));
+  // Out of range (1e999, 1e-400) is still a number in the file, but
+  // from_chars leaves v untouched then (it was read as 0 before a fuzzer
+  // found it): take strtod's ±inf or underflowed value, and let validation
+  // count the infinities.
+  if (ec == std::errc::result_out_of_range) v = std::strtod(std::string(b, e).c_str(), nullptr);
   return v;
 }
 
