@@ -65,7 +65,8 @@ void add_bench_command(CLI::App& app) {
   scan->add_option("--raster-only-above", a->raster_only_above,
                    "Sizes above this skip compositing (counts and scan times only)")
       ->capture_default_str();
-  scan->add_option("--memory-budget", a->memory_budget_mb, "MiB (default: half of physical memory)");
+  scan->add_option("--memory-budget", a->memory_budget_mb, "MiB (default: half of physical memory)")
+      ->check(CLI::Range(0.001, 1.7e13));
   scan->callback([a] {
     ScanBenchOptions o;
     o.inputs = a->inputs;

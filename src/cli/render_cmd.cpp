@@ -125,7 +125,7 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
   using Clock = std::chrono::steady_clock;
   SceneInput in = a.load();
   if (!stats_path.empty()) AtomicFile(stats_path).check_writable();  // not after the render
-  warn_nonfinite(in);
+  if (!render_mpi_enabled() || render_mpi_rank() == 0) warn_nonfinite(in);
   RenderSettings& rs = in.scene.settings;
   rs.face_area_stats = !stats_path.empty();
   const auto t1 = Clock::now();
@@ -204,7 +204,7 @@ void add_render_command(CLI::App& app) {
                   "the best frame's time (steady-state benchmarks)")
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--compression", *compression,
-                  "EXR/TIFF compression. EXR lossless: rle (default: fast), zip (smaller files, ~6x slower to "
+                  "EXR/TIFF compression. EXR lossless: rle (default: fast), zip (smaller files, ~4x slower to "
                   "write), zips, piz, none; EXR lossy: pxr24, b44, b44a, dwaa, dwab. TIFF (lossless): zip "
                   "(default), lzw, packbits, none");
   add_render_mpi_options(*cmd);  // --mpi, --mpi-schedule (src/cli/render_mpi.h)

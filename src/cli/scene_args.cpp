@@ -17,7 +17,8 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
   cmd.add_option("--width", width, "Override image width")->check(CLI::Range(1u, 1u << 20));
   cmd.add_option("--height", height, "Override image height")->check(CLI::Range(1u, 1u << 20));
   cmd.add_option("--projection", projection, "Automatic camera: orthographic (default) or perspective");
-  cmd.add_option("--memory-budget", memory_budget_mb, "Memory budget in MiB (default: half of physical memory)");
+  cmd.add_option("--memory-budget", memory_budget_mb, "Memory budget in MiB (default: half of physical memory)")
+      ->check(CLI::Range(0.001, 1.7e13));
   if (!engine_knobs) return;
   cmd.add_option("--scan", scan, "Scan strategy: span (default), bbox (same image, slower), bconvert");
   cmd.add_option("--variant", variant, "B-Convert variant: truncate, round, dilate, dda3d, runlength");

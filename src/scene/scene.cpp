@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -219,12 +220,15 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
       if (rs.early_termination < 0 || rs.early_termination > 255) c.fail("render.early_termination must be in [0, 255]");
     }
     if (r.contains("max_list_length")) {
-      if (!r["max_list_length"].is_number_unsigned()) c.fail("render.max_list_length must be a non-negative integer");
+      if (!r["max_list_length"].is_number_unsigned() || r["max_list_length"].get<uint64_t>() > UINT32_MAX)
+        c.fail("render.max_list_length must be an integer from 0 to 4294967295");
       rs.max_list_length = r["max_list_length"].get<uint32_t>();
     }
     if (r.contains("memory_budget_mb")) {
       const double mb = num(c, r["memory_budget_mb"], "render.memory_budget_mb");
-      if (mb <= 0) c.fail("render.memory_budget_mb must be positive");
+      // Up to 2^44 MiB (2^64 bytes): beyond, the byte count is not representable
+      // (a fuzzing finding: the conversion was undefined behaviour).
+      if (!(mb > 0 && mb < 17592186044416.0)) c.fail("render.memory_budget_mb must be positive and below 2^44");
       rs.memory_budget_bytes = uint64_t(mb * 1048576.0);
     }
   }

@@ -75,6 +75,10 @@ expect tf_out_of_range 1 'transfer_function.color: values must be in \[0, 1\]$' 
   render "$(scene tfr '{"mesh": "'"$cube"'", "transfer_function": {"color": [[0,0,0,0],[1,1,1,2]], "opacity": [[0,0],[1,1]]}}')" -o "$tmp/o.png"
 expect tf_number_overflow 1 "tfn.json: invalid JSON: .*number overflow parsing '1e999'$" -"$tmp/o.png" -- \
   render "$(scene tfn '{"mesh": "'"$cube"'", "transfer_function": {"color": [[0,0,0,0]], "opacity": [[0,1e999]]}}')" -o "$tmp/o.png"
+expect budget_not_representable 1 'render.memory_budget_mb must be positive and below 2\^44$' -"$tmp/o.png" -- \
+  render "$(scene mb '{"mesh": "'"$cube"'", "render": {"memory_budget_mb": 1e40}}')" -o "$tmp/o.png"
+expect budget_option_range 2 '^zsweep: error: --memory-budget: Value 0 not in range' -"$tmp/o.png" -- \
+  render "$cube" --memory-budget 0 -o "$tmp/o.png"
 expect empty_mesh 1 'empty0.off: mesh has no tets$' -"$tmp/o.png" -- \
   render "$(printf '0 0\n' > "$tmp/empty0.off"; echo "$tmp/empty0.off")" -o "$tmp/o.png"
 
