@@ -227,6 +227,26 @@ TEST(GenerateSurface, ReadsOffSurfaceAndRejectsOpenOrMissing) {
   }
 }
 
+// CGAL 5.5's PLY reader calls vector::back() on an empty element list when a
+// property comes first (a fuzz_surface finding): refused before CGAL reads it.
+// A valid ASCII PLY tet still reads.
+TEST(GenerateSurface, PlyHeaderCheckedBeforeCgal) {
+  fs::path dir = zs::test::scratch_dir();
+  const std::string body = "property float x\nproperty float y\nproperty float z\nelement face 4\n"
+                           "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                           "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+  std::ofstream(dir / "bad.ply") << "ply\nformat ascii 1.0\nelen temvertex 4\n" << body;
+  try {
+    zs::read_surface((dir / "bad.ply").string());
+    ADD_FAILURE() << "property before element accepted";
+  } catch (const zs::MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.ply:4: PLY header: property before any element"), std::string::npos)
+        << e.what();
+  }
+  std::ofstream(dir / "good.ply") << "ply\nformat ascii 1.0\nelement vertex 4\n" << body;
+  EXPECT_EQ(zs::read_surface((dir / "good.ply").string()).facets.size(), 4u);
+}
+
 TEST(GenerateCgal, ImplicitSphereInsideAndVolume) {
   zs::TetMesh m = zs::mesh_implicit(*zs::find_implicit("sphere"), zs::Mesh3Criteria::from_size(0.15));
   expect_valid(m);

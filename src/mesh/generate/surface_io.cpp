@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -35,9 +36,29 @@ static bool self_intersects(const Plc& plc) {
   return PMP::does_self_intersect(sm);
 }
 
+// CGAL 5.5's PLY reader attaches each "property" line to the last "element"
+// with vector::back(), which is undefined on a header whose first property
+// comes before any element (found by fuzz_surface): check the header first.
+static void check_ply_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  bool element = false;
+  for (size_t n = 1; n <= 10000 && std::getline(in, line); ++n) {
+    std::istringstream words(line);
+    std::string w;
+    words >> w;
+    if (n == 1 && w != "ply") throw MeshError(path, 1, "not a PLY file (no 'ply' magic)");
+    if (w == "element") element = true;
+    if (w == "property" && !element) throw MeshError(path, n, "PLY header: property before any element");
+    if (w == "end_header") return;
+  }
+  throw MeshError(path, "PLY header: no end_header");
+}
+
 Plc read_surface(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw MeshError(path, "no such file");
+  if (std::filesystem::path(path).extension() == ".ply") check_ply_header(path);
   std::vector<K::Point_3> pts;
   std::vector<std::vector<std::size_t>> polys;
   bool ok = false;
