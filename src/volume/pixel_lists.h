@@ -46,7 +46,7 @@ struct alignas(64) PixelRecord {
   uint16_t kinds;         // FragmentKind of inline slot i in bits 2i, 2i+1
   uint16_t n;             // inline fragments; the overflow list is empty unless n == kInline
   uint16_t done;          // early-terminated: nothing behind matters
-  uint16_t active;        // listed in the tile's active pixels
+  uint16_t active;        // 1: listed in the tile's active pixels; 2: was, and is no longer; 0: never touched
   int16_t inside;         // entries minus exits (compositor.h), saturating
   uint16_t ovf;           // fragments in the overflow list, saturating at 65535
   float last_z, last_s;   // the previous fragment: where the next segment starts

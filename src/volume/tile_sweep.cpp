@@ -34,8 +34,9 @@ class TileSweep {
       : in_(in), rs_(in.rs), vp_(vp), vw_(uint32_t(vp.x1 - vp.x0)), ws_(ws), S_(S),
         comp_(in.view, in.integ, rs_.early_termination > 0 ? rs_.early_termination / 510.0 : 0.0,
               batch_for(in, ws), prepare(ws, size_t(vw_) * uint32_t(vp.y1 - vp.y0))),
-        timed_(rs_.phase_times) {
+        npix_(size_t(vw_) * uint32_t(vp.y1 - vp.y0)), timed_(rs_.phase_times) {
     ws.active.clear();
+    ws.touched.clear();
     ws.lists.reset(max_fragments);
   }
 
@@ -45,9 +46,16 @@ class TileSweep {
     if (!ws.batch) ws.batch = std::make_unique<SegmentBatch>(in.integ, in.rs.tf);
     return ws.batch.get();
   }
+  // Records are indexed row by row within the tile (any tile size fits in
+  // records that are all reset). finish() resets the ones a tile touched.
   static PixelRecord* prepare(TileWorkspace& ws, size_t npix) {
-    ws.px.resize(npix);
-    for (PixelRecord& p : ws.px) p.reset();
+    if (ws.px.size() < npix) {
+      ws.px.resize(npix);
+      ws.px_clean = false;
+    }
+    if (!ws.px_clean)
+      for (PixelRecord& p : ws.px) p.reset();
+    ws.px_clean = false;  // until finish() has reset what this tile touches
     return ws.px.data();
   }
 
@@ -101,10 +109,17 @@ class TileSweep {
       PixelRecord& px = ws_.px[p];
       composite_pixel(px, p, vp_.x0 + int(p % vw_), vp_.y0 + int(p / vw_), z_limit);
       if (px.n > 0) ws_.active[n++] = p;
-      else px.active = 0;
+      else px.active = 2;
     }
     ws_.active.resize(n);
     if (timed_) S_.ms_composite += ms_between(t0, Clock::now());
+  }
+
+  // Lists pixel p among the active ones (and, the first time, the touched ones).
+  void activate(PixelRecord& px, uint32_t p) {
+    if (px.active == 0) ws_.touched.push_back(p);
+    px.active = 1;
+    ws_.active.push_back(p);
   }
 
   // Counts of one face's fragments, kept in registers by the hot loop and
@@ -127,10 +142,7 @@ class TileSweep {
       if (px.done) return;
     }
     if (!ws_.lists.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep, fc.inserted);
-    if (!px.active) {
-      px.active = 1;
-      ws_.active.push_back(p);
-    }
+    if (px.active != 1) activate(px, p);
     ++fc.inserted;
     fc.max_len = std::max<uint32_t>(fc.max_len, px.pending());
     if (max_list_length && px.pending() > max_list_length) {
@@ -264,10 +276,7 @@ class TileSweep {
         PixelRecord& px = px0[p];
         if (px.z[0] < z_sweep) comp_.composite_batched(px, p, lists, z_sweep, 1.0);
         if (!lists.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep, fc.inserted);
-        if (!px.active) {
-          px.active = 1;
-          ws_.active.push_back(p);
-        }
+        if (px.active != 1) activate(px, p);
         fc.max_len = std::max<uint32_t>(fc.max_len, px.pending());
       }
       fc.inserted += uint64_t(r.x1 - r.x0 + 1);
@@ -287,18 +296,25 @@ class TileSweep {
   }
 
   // out = I + (1 - alpha)·background, alpha = 1 - T (premultiplied).
+  // Untouched pixels (rgb 0, T 1) are the background exactly; touched ones
+  // are computed, and their records reset for the next tile.
   void finish() {
-    const size_t npix = ws_.px.size();
-    ws_.out.resize(npix * 4);
+    ws_.out.resize(npix_ * 4);
     const double* bg = rs_.background;
-    for (size_t p = 0; p < npix; ++p) {
-      const PixelRecord& px = ws_.px[p];
+    float* const out = ws_.out.data();
+    const float b[4] = {float(bg[0]), float(bg[1]), float(bg[2]), float(bg[3])};
+    for (size_t p = 0; p < npix_; ++p)
+      for (int k = 0; k < 4; ++k) out[p * 4 + k] = b[k];
+    for (uint32_t p : ws_.touched) {
+      PixelRecord& px = ws_.px[p];
       const double T = px.T;
-      float* o = &ws_.out[p * 4];
+      float* o = &out[size_t(p) * 4];
       for (int k = 0; k < 3; ++k) o[k] = float(px.rgb[k] + T * bg[k]);
       o[3] = float((1.0 - T) + T * bg[3]);
       if (T < 1.0) ++S_.rendered_pixels;
+      px.reset();
     }
+    ws_.px_clean = true;
   }
 
   const SweepShared& in_;
@@ -308,6 +324,7 @@ class TileSweep {
   TileWorkspace& ws_;
   RenderStats& S_;
   Compositor comp_;
+  size_t npix_;  // this tile's pixels (the first npix_ records)
   bool timed_;
   uint64_t fragments_ = 0, max_len_ = 0;  // this tile's counts (kept out of S_ in the hot loop)
 };

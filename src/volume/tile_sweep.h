@@ -43,8 +43,12 @@ struct SweepShared {
 // Per-thread scratch, reused from tile to tile.
 // Aligned to its own cache lines: two threads' workspaces never share one.
 struct alignas(128) TileWorkspace {
+  // Pixel records, all in their reset state between tiles (only the ones a
+  // tile touched are reset after it: on a sparse image most are never touched).
   std::vector<PixelRecord> px;
-  std::vector<uint32_t> active;  // pixels whose lists may be non-empty
+  bool px_clean = false;          // false: reset every record before the next tile
+  std::vector<uint32_t> active;   // pixels whose lists may be non-empty
+  std::vector<uint32_t> touched;  // pixels that received a fragment this tile
   PixelLists lists;
   FaceSpans spans;
   FaceFragments frags;  // the benchmarks' timed path only
