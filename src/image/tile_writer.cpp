@@ -172,10 +172,9 @@ struct ImageTileWriter::Impl {
   std::unique_ptr<OIIO::ImageOutput> file;
   uint64_t header_writes = 0;  // proxy writes before the first row
   Layout layout;
-  bool is_float = false, tiled = false, random_order = false;  // layout's, for brevity
   std::vector<bool> received;
   uint32_t received_count = 0;
-  std::map<uint32_t, Band> bands;  // by tile row, only for !random_order
+  std::map<uint32_t, Band> bands;  // by tile row, only for !layout.random_order
   uint32_t next_row = 0;           // first tile row not yet written
   uint64_t held = 0, peak = 0;
   bool committed = false;
@@ -190,7 +189,7 @@ struct ImageTileWriter::Impl {
     file = create_output(path);
     layout = layout_for(*file, path, grid);
     const std::string& fmt = layout.fmt;
-    is_float = layout.is_float, tiled = layout.tiled, random_order = layout.random_order;
+    const bool is_float = layout.is_float, tiled = layout.tiled;
     OIIO::ImageSpec spec(int(grid.width), int(grid.height), 4, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "Linear");
     spec.attribute("oiio:UnassociatedAlpha", 1);
@@ -211,7 +210,7 @@ struct ImageTileWriter::Impl {
     }
     if (!file->open(out.temp_path(), spec)) throw std::runtime_error(path + ": cannot write: " + one_line(file->geterror()));
     if (proxy) header_writes = proxy->writes();
-    random_order = layout.random_order = tiled && file->supports("random_access");
+    layout.random_order = tiled && file->supports("random_access");
     received.assign(grid.count(), false);
   }
 
@@ -237,7 +236,7 @@ struct ImageTileWriter::Impl {
     file->geterror();  // nobody is listening
   }
 
-  uint64_t pixel_bytes() const { return is_float ? 16 : 4; }
+  uint64_t pixel_bytes() const { return layout.pixel_bytes(); }
 
   [[noreturn]] void fail(const std::string& what) {
     std::string e = file ? file->geterror() : std::string();
@@ -271,7 +270,7 @@ struct ImageTileWriter::Impl {
     for (uint32_t y = 0; y < r.height(); ++y) {
       const float* src = rgba + size_t(y) * w * 4;
       const size_t dst = (size_t(y) * grid.width + r.x0) * 4;
-      if (is_float) {
+      if (layout.is_float) {
         std::memcpy(b.data.data() + dst * 4, src, w * 16);
       } else {
         uint8_t* d = b.data.data() + dst;
@@ -283,12 +282,12 @@ struct ImageTileWriter::Impl {
 
   // Writes every complete band at the top, in order.
   void flush_bands() {
-    const OIIO::TypeDesc type = is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+    const OIIO::TypeDesc type = layout.is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
     for (auto it = bands.find(next_row); it != bands.end() && it->second.tiles_left == 0;
          it = bands.find(next_row)) {
       const int y0 = int(next_row * grid.size), y1 = int(std::min(y0 + grid.size, grid.height));
       const void* data = it->second.data.data();
-      const bool ok = tiled ? file->write_tiles(0, int(grid.width), y0, y1, 0, 1, type, data)
+      const bool ok = layout.tiled ? file->write_tiles(0, int(grid.width), y0, y1, 0, 1, type, data)
                             : file->write_scanlines(y0, y1, 0, type, data);
       if (!ok) fail("cannot write");
       // Stop a long render at the first failed write (a full disk), not at commit.
@@ -306,7 +305,7 @@ struct ImageTileWriter::Impl {
     if (received[id])
       throw std::runtime_error(path + ": tile at (" + std::to_string(r.x0) + ", " + std::to_string(r.y0) +
                                ") delivered twice");
-    if (random_order) {
+    if (layout.random_order) {
       // write_tiles, unlike write_tile, takes an edge tile at its real size.
       if (!file->write_tiles(int(r.x0), int(r.x1), int(r.y0), int(r.y1), 0, 1, OIIO::TypeDesc::FLOAT, rgba))
         fail("cannot write");
@@ -349,7 +348,7 @@ uint64_t ImageTileWriter::buffer_bytes_estimate(const std::string& path, const T
 }
 
 uint64_t ImageTileWriter::peak_buffer_bytes() const { return impl_->peak; }
-bool ImageTileWriter::tiled() const { return impl_->tiled; }
+bool ImageTileWriter::tiled() const { return impl_->layout.tiled; }
 void ImageTileWriter::commit() { impl_->commit(); }
 
 }  // namespace zs

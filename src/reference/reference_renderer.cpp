@@ -15,6 +15,7 @@
 #include "reference/boundary_hits.h"
 #include "reference/tet_walk.h"
 #include "scene/camera.h"
+#include "util/bytes_str.h"
 #include "volume/segment_integrator.h"
 #include "volume/zsweep_renderer.h"
 
@@ -43,9 +44,9 @@ Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const Ren
   const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
   const uint64_t image_bytes = uint64_t(rs.width) * rows_wanted.size() * 16;
   if (image_bytes >= budget)
-    throw std::runtime_error("memory budget of " + std::to_string(budget >> 20) + " MiB cannot hold the reference's " +
+    throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold the reference's " +
                              std::to_string(rs.width) + "x" + std::to_string(rows_wanted.size()) + " float image (" +
-                             std::to_string(image_bytes >> 20) + " MiB)");
+                             bytes_str(image_bytes) + ")");
   const View view(rs.camera, rs.width, rs.height);
   const SolidFaces solid = build_solid_faces(mesh, topo);
   const BoundaryBins bins(mesh, topo, solid, view);

@@ -9,6 +9,7 @@
 
 #include "raster/bbox_scan.h"
 #include "raster/span_scan.h"
+#include "util/bytes_str.h"
 #include "volume/compositor.h"
 #include "volume/zsweep_renderer.h"
 
@@ -19,12 +20,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-std::string mib(uint64_t b) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.1f MiB", double(b) / 1048576.0);
-  return buf;
 }
 
 // The sweep of one tile, with its state in one place.
@@ -165,7 +160,7 @@ class TileSweep {
     if (!ws_.lists.insert(px, z, s, kind))
       throw std::runtime_error("memory budget too small: " +
                                std::to_string(ws_.lists.live_fragments() + face_inserted) + " fragments (" +
-                               mib(ws_.lists.overflow_fragments() * sizeof(Fragment)) +
+                               bytes_str(ws_.lists.overflow_fragments() * sizeof(Fragment)) +
                                " beyond the pixel records) must be pending at once in one tile of this view");
   }
 

@@ -22,6 +22,7 @@
 #include "volume/near_clip.h"
 #include "volume/sweep_order.h"
 #include "volume/tile_bins.h"
+#include "util/bytes_str.h"
 #include "volume/tile_sweep.h"
 
 namespace zs {
@@ -30,13 +31,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-std::string bytes_str(uint64_t b) {
-  char buf[64];
-  if (b >= (uint64_t(1) << 20)) std::snprintf(buf, sizeof buf, "%.1f MiB", double(b) / 1048576.0);
-  else std::snprintf(buf, sizeof buf, "%llu bytes", (unsigned long long)b);
-  return buf;
-}
 
 }  // namespace
 
