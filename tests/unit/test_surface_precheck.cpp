@@ -94,6 +94,8 @@ TEST(SurfacePrecheck, PlyHeaderTypesAndCounts) {
             "c.ply:3: PLY header: element counts exceed the file's 163 bytes");
   EXPECT_EQ(surface_error("m.ply", "ply\nformat binary_little_endian 1.0\nelement thing -1\nend_header\n"),
             "m.ply:3: PLY header: element count '-1' is not a number of items");
+  EXPECT_EQ(surface_error("e.ply", "ply\nend_header ascii 1.0\nproperty float x\nend_header\n"),
+            "e.ply:3: PLY header: property before any element");
   EXPECT_EQ(surface_error("h.ply", "ply\nformat ascii 1.0\nelement halfedge 1\nproperty int source\nend_header\n1\n"),
             "h.ply:4: PLY header: halfedge 'source' must be uint");
 }

@@ -206,6 +206,7 @@ void precheck_ply(const std::string& path) {
     std::string w, a, b, c;
     words >> w;
     if (n == 1 && w != "ply") throw MeshError(path, 1, "not a PLY file (no 'ply' magic)");
+    if (n <= 2) continue;  // CGAL takes line 2 as the format whatever it says ("end_header ascii 1.0": a finding)
     if (w == "element") {
       words >> element >> a;
       // CGAL reads the count as size_t: "-1" became 2^64 - 1 items, and an
