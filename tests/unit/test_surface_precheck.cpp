@@ -96,6 +96,8 @@ TEST(SurfacePrecheck, PlyHeaderTypesAndCounts) {
             "m.ply:3: PLY header: element count '-1' is not a number of items");
   EXPECT_EQ(surface_error("e.ply", "ply\nend_header ascii 1.0\nproperty float x\nend_header\n"),
             "e.ply:3: PLY header: property before any element");
+  EXPECT_EQ(surface_error("r.ply", ply(xyz + "property uchar red\nproperty float green\nproperty uchar g\n", "uchar int")),
+            "r.ply:8: PLY header: vertex colour 'green' must be uchar");
   EXPECT_EQ(surface_error("h.ply", "ply\nformat ascii 1.0\nelement halfedge 1\nproperty int source\nend_header\n1\n"),
             "h.ply:4: PLY header: halfedge 'source' must be uint");
 }

@@ -232,6 +232,12 @@ void precheck_ply(const std::string& path) {
       if (vertex && (name == "x" || name == "y" || name == "z") &&
           (list || !is_one_of(a, {"float", "float32", "double", "float64"})))
         throw MeshError(path, n, "PLY header: vertex coordinate '" + name + "' must be float or double");
+      // With a uchar `red` (or r) and a uchar g, CGAL reads `green` as uchar
+      // whatever it was declared: colours are uchar or absent.
+      const bool face = element == "face" || element == "faces";
+      if ((vertex || face) && is_one_of(name, {"red", "green", "blue", "r", "g", "b"}) &&
+          (list || !is_one_of(a, {"uchar", "uint8"})))
+        throw MeshError(path, n, "PLY header: " + element + " colour '" + name + "' must be uchar");
       if (element == "halfedge" && (name == "source" || name == "target") && (list || !is_one_of(a, {"uint", "uint32"})))
         throw MeshError(path, n, "PLY header: halfedge '" + name + "' must be uint");
     }

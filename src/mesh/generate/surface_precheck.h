@@ -18,7 +18,7 @@ void precheck_off(const std::string& path);
 void precheck_stl(const std::string& path);
 // PLY header: a property needs an element; element counts within the file
 // size; list counts of at most 16 bits; vertex x/y/z float or double;
-// halfedge source/target uint.
+// vertex and face colours uchar; halfedge source/target uint.
 void precheck_ply(const std::string& path);
 
 }  // namespace zs
