@@ -1,4 +1,5 @@
-// `zsweep mesh info [MESH] [--json]`: counts, topology and validation report.
+// `zsweep mesh info [MESH] [--json]`: counts, topology and validation report;
+// for sphere files (.pdb/.ent/.sph) the sphere report of sphere_info.h.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,8 +13,10 @@
 
 #include "cli/commands.h"
 #include "cli/mesh_source.h"
+#include "cli/sphere_info.h"
 #include "mesh/topology.h"
 #include "mesh/validate.h"
+#include "spheres/sphere_io.h"
 
 namespace zs {
 
@@ -108,6 +111,7 @@ void add_mesh_info_command(CLI::App& mesh) {
   cmd->add_option("--zero-volume-eps", args->eps, "Relative epsilon for zero-volume tets (|6V| <= eps*L^3)")
       ->capture_default_str();
   cmd->callback([args] {
+    if (is_sphere_file(args->src.path)) return print_sphere_info(args->src.path, args->json);
     const TetMesh m = args->src.load();
     const auto t0 = std::chrono::steady_clock::now();
     const Topology topo = build_topology(m);

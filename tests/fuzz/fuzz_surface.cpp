@@ -1,11 +1,11 @@
 // libFuzzer target: the closed triangle-surface reader behind `mesh generate
 // --surface` (read_surface: CGAL's .off/.stl/.ply/.obj polygon-soup readers,
 // then our fan triangulation, closure, manifold and self-intersection
-// checks). The first byte picks the format (mod 3: off, stl, obj), the rest
-// is the file, written to a per-process temporary because the readers take
-// paths. Rejections (MeshError naming the file) are expected outcomes. PLY is
-// left out: CGAL 5.5's PLY reader fails on malformed headers in ways we can
-// only partly guard (docs/robustness.md, finding 6).
+// checks). The first byte picks the format (mod 4: off, stl, obj, ply; the
+// seeds use '0'..'3'), the rest is the file, written to a per-process
+// temporary because the readers take paths. Rejections (MeshError naming the
+// file) are expected outcomes; surface_precheck.h keeps CGAL 5.5's readers
+// from the inputs they crash or run out of memory on (docs/robustness.md).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -18,9 +18,9 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
-  static const char* const kExt[3] = {".off", ".stl", ".obj"};
+  static const char* const kExt[4] = {".off", ".stl", ".obj", ".ply"};
   const std::string path =
-      "/tmp/zsweep-fuzz-surface-" + std::to_string(::getpid()) + kExt[data[0] % 3];
+      "/tmp/zsweep-fuzz-surface-" + std::to_string(::getpid()) + kExt[data[0] % 4];
   if (FILE* f = std::fopen(path.c_str(), "wb")) {
     std::fwrite(data + 1, 1, size - 1, f);
     std::fclose(f);

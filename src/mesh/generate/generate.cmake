@@ -8,6 +8,7 @@ add_library(zsweep_generate STATIC
   ${ZS_GEN_DIR}/shape_mesher.cpp
   ${ZS_GEN_DIR}/tetgen_mesher.cpp
   ${ZS_GEN_DIR}/surface_io.cpp
+  ${ZS_GEN_DIR}/surface_precheck.cpp
   ${ZS_GEN_DIR}/implicit_shapes.cpp
   ${ZS_GEN_DIR}/cgal_mesher.cpp
   ${ZS_GEN_DIR}/voxel_image.cpp

@@ -16,6 +16,7 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 
+#include "mesh/generate/surface_precheck.h"
 #include "mesh/mesh_error.h"
 
 namespace zs {
@@ -36,29 +37,15 @@ static bool self_intersects(const Plc& plc) {
   return PMP::does_self_intersect(sm);
 }
 
-// CGAL 5.5's PLY reader attaches each "property" line to the last "element"
-// with vector::back(), which is undefined on a header whose first property
-// comes before any element (found by fuzz_surface): check the header first.
-static void check_ply_header(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  bool element = false;
-  for (size_t n = 1; n <= 10000 && std::getline(in, line); ++n) {
-    std::istringstream words(line);
-    std::string w;
-    words >> w;
-    if (n == 1 && w != "ply") throw MeshError(path, 1, "not a PLY file (no 'ply' magic)");
-    if (w == "element") element = true;
-    if (w == "property" && !element) throw MeshError(path, n, "PLY header: property before any element");
-    if (w == "end_header") return;
-  }
-  throw MeshError(path, "PLY header: no end_header");
-}
-
 Plc read_surface(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw MeshError(path, "no such file");
-  if (std::filesystem::path(path).extension() == ".ply") check_ply_header(path);
+  // CGAL's readers allocate by counts in the file, and its PLY reader trusts
+  // the header's types: check both first (surface_precheck.h).
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".off") precheck_off(path);
+  if (ext == ".stl") precheck_stl(path);
+  if (ext == ".ply") precheck_ply(path);
   std::vector<K::Point_3> pts;
   std::vector<std::vector<std::size_t>> polys;
   bool ok = false;
