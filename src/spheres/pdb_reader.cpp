@@ -7,8 +7,7 @@
 #include <cstdio>
 
 #include "mesh/mesh_error.h"
-#include "spheres/parse_number.h"
-#include "spheres/text_file.h"
+#include "util/text_lines.h"
 #include "spheres/vdw_radii.h"
 
 namespace zs {
@@ -62,14 +61,12 @@ double coordinate(const Record& r, const std::string& name, size_t first, char a
 
 SphereSet parse_pdb(std::string_view text, const std::string& name) {
   SphereSet s;
-  size_t line_no = 0, pos = 0, unknown = 0, no_bfactor_line = 0;
+  size_t unknown = 0, no_bfactor_line = 0;
   char first_alt = ' ';
-  while (pos < text.size()) {
-    size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
+  TextLines lines(text);
+  std::string_view line;
+  while (lines.next(line)) {
+    const size_t line_no = lines.line_no();
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line.starts_with("ENDMDL")) break;  // model 1 only
     const bool atom = line.starts_with("ATOM"), hetatm = line.starts_with("HETATM");

@@ -5,8 +5,7 @@
 #include <cmath>
 
 #include "mesh/mesh_error.h"
-#include "spheres/parse_number.h"
-#include "spheres/text_file.h"
+#include "util/text_lines.h"
 
 namespace zs {
 
@@ -16,39 +15,19 @@ namespace {
   throw MeshError(name, line, what);
 }
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-
-// Splits a line into at most kMax tokens; returns the count, capped at kMax + 1
-// so "too many fields" is still seen.
-constexpr size_t kMax = 5;
-size_t split(std::string_view line, std::string_view (&tok)[kMax]) {
-  size_t n = 0, i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && is_space(line[i])) ++i;
-    if (i >= line.size()) break;
-    size_t j = i;
-    while (j < line.size() && !is_space(line[j])) ++j;
-    if (n < kMax) tok[n] = line.substr(i, j - i);
-    if (++n > kMax) break;
-    i = j;
-  }
-  return n;
-}
+constexpr size_t kMax = 5;  // x y z r scalar
 
 }  // namespace
 
 SphereSet parse_spheres(std::string_view text, const std::string& name) {
   SphereSet s;
-  size_t line_no = 0, pos = 0;
+  TextLines lines(text);
+  std::string_view line;
   size_t first_fields = 0, first_line = 0;  // the first sphere line fixes 4 or 5 fields
-  while (pos < text.size()) {
-    size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_no;
+  while (lines.next(line)) {
+    const size_t line_no = lines.line_no();
     std::string_view tok[kMax];
-    const size_t n = split(line, tok);
+    const size_t n = split_tokens(line, tok, kMax);
     if (n == 0 || tok[0][0] == '#') continue;
     if (n < 4 || n > kMax)
       fail_at(name, line_no, "expected 'x y z r [scalar]' (4 or 5 numbers), found " + std::to_string(n) + (n > kMax ? "+" : "") +

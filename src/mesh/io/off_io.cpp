@@ -4,14 +4,12 @@
 
 #include <cerrno>
 #include <charconv>
-#include <cstdlib>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "mesh/mesh_error.h"
+#include "util/text_lines.h"
 
 namespace zs {
 
@@ -21,99 +19,62 @@ namespace {
 // lines), splitting each into whitespace-separated tokens.
 class LineCursor {
  public:
-  LineCursor(std::string_view text, const std::string& name) : text_(text), name_(name) {}
+  LineCursor(std::string_view text, const std::string& name) : lines_(text), name_(name) {}
 
   // Advances to the next significant line; false at end of text.
   bool next() {
-    while (pos_ < text_.size()) {
-      size_t end = text_.find('\n', pos_);
-      if (end == std::string_view::npos) end = text_.size();
-      std::string_view line = text_.substr(pos_, end - pos_);
-      pos_ = end + 1;
-      ++line_no_;
-      tokenize(line);
+    std::string_view line;
+    while (lines_.next(line)) {
+      ntok_ = split_tokens(line, tok_, kMaxTok);
       if (ntok_ > 0 && tok_[0][0] != '#') return true;
     }
     ntok_ = 0;
     return false;
   }
 
-  size_t line() const { return line_no_; }
+  size_t line() const { return lines_.line_no(); }
   size_t count() const { return ntok_; }
   std::string_view token(size_t i) const { return tok_[i]; }
-  size_t bytes_left() const { return pos_ < text_.size() ? text_.size() - pos_ : 0; }
+  size_t bytes_left() const { return lines_.bytes_left(); }
 
-  [[noreturn]] void fail(const std::string& what) const { throw MeshError(name_, line_no_, what); }
+  [[noreturn]] void fail(const std::string& what) const { throw MeshError(name_, lines_.line_no(), what); }
 
  private:
-  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-
-  void tokenize(std::string_view line) {
-    ntok_ = 0;
-    size_t i = 0;
-    while (i < line.size()) {
-      while (i < line.size() && is_space(line[i])) ++i;
-      if (i >= line.size()) break;
-      size_t j = i;
-      while (j < line.size() && !is_space(line[j])) ++j;
-      if (ntok_ < kMaxTok) tok_[ntok_] = line.substr(i, j - i);
-      ++ntok_;  // counts past kMaxTok so "too many numbers" is still detected
-      i = j;
-    }
-    if (ntok_ > kMaxTok) ntok_ = kMaxTok + 1;
-  }
-
   static constexpr size_t kMaxTok = 8;
-  std::string_view text_;
+  TextLines lines_;
   const std::string& name_;
-  size_t pos_ = 0, line_no_ = 0;
   std::string_view tok_[kMaxTok];
   size_t ntok_ = 0;
 };
 
-std::string quoted(std::string_view s) {
-  if (s.size() > 24) return "'" + std::string(s.substr(0, 24)) + "...'";
-  return "'" + std::string(s) + "'";
-}
-
 double parse_double(const LineCursor& cur, std::string_view tok) {
-  double v = 0.0;
-  const char* b = tok.data();
-  const char* e = b + tok.size();
-  if (b != e && *b == '+') ++b;  // from_chars rejects a leading '+'
-  auto [p, ec] = std::from_chars(b, e, v);
-  if ((ec != std::errc() && ec != std::errc::result_out_of_range) || p != e)
-    cur.fail("expected a number, found " + quoted(tok));
-  // Out of range (1e999, 1e-400) is still a number in the file, but
-  // from_chars leaves v untouched then (it was read as 0 before a fuzzer
-  // found it): take strtod's ±inf or underflowed value, and let validation
-  // count the infinities.
-  if (ec == std::errc::result_out_of_range) v = std::strtod(std::string(b, e).c_str(), nullptr);
-  return v;
+  const auto v = parse_number(tok);
+  if (!v) cur.fail("expected a number, found " + quoted_token(tok));
+  return *v;
 }
 
 // Counts in the header: non-negative integers that fit in 32 bits.
 uint64_t parse_count(const LineCursor& cur, std::string_view tok, const char* what) {
-  if (!tok.empty() && tok[0] == '-') cur.fail(std::string("negative ") + what + " count " + quoted(tok));
+  if (!tok.empty() && tok[0] == '-') cur.fail(std::string("negative ") + what + " count " + quoted_token(tok));
   uint64_t v = 0;
   auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
   if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == tok.data() + tok.size() &&
                                                v > std::numeric_limits<uint32_t>::max()))
-    cur.fail(std::string(what) + " count " + quoted(tok) + " is too large");
+    cur.fail(std::string(what) + " count " + quoted_token(tok) + " is too large");
   if (ec != std::errc() || p != tok.data() + tok.size())
-    cur.fail(std::string("expected the ") + what + " count, found " + quoted(tok));
+    cur.fail(std::string("expected the ") + what + " count, found " + quoted_token(tok));
   return v;
 }
 
 uint32_t parse_index(const LineCursor& cur, std::string_view tok, uint64_t n_points) {
-  if (!tok.empty() && tok[0] == '-') cur.fail("negative vertex index " + quoted(tok));
+  if (!tok.empty() && tok[0] == '-') cur.fail("negative vertex index " + quoted_token(tok));
   uint64_t v = 0;
   auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
   if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == tok.data() + tok.size() && v >= n_points))
     cur.fail("vertex index " + std::string(tok) + " out of range (mesh has " +
              std::to_string(n_points) + " vertices, indices are 0-based)");
   if (ec != std::errc() || p != tok.data() + tok.size())
-    cur.fail("expected a vertex index, found " + quoted(tok));
+    cur.fail("expected a vertex index, found " + quoted_token(tok));
   return static_cast<uint32_t>(v);
 }
 
@@ -174,14 +135,7 @@ TetMesh parse_off(std::string_view text, const std::string& name) {
   return m;
 }
 
-TetMesh read_off(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshError(path, std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw MeshError(path, "read error");
-  return parse_off(ss.str(), path);
-}
+TetMesh read_off(const std::string& path) { return parse_off(read_text_file(path), path); }
 
 void write_off(const std::string& path, const TetMesh& m) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
