@@ -3,6 +3,7 @@
 // function compiled for AVX2 can leak into code that runs without it.
 #include <immintrin.h>
 
+#include "volume/lane_pair.h"
 #include "volume/light_kernel.h"
 
 namespace zs::light {
@@ -10,6 +11,7 @@ namespace zs::light {
 namespace {
 
 struct Lane4 {
+  static constexpr int kWidth = 4;
   using Mask = __m256d;
   __m256d v;
   Lane4() = default;
@@ -76,6 +78,8 @@ struct Lane4 {
   }
 };
 
+using Lane4x2 = LanePair<Lane4>;  // 8 segments per step
+
 }  // namespace
 
 void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts) {
@@ -83,7 +87,7 @@ void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, doub
     for (size_t i = 0; i < n; i += 4) segment_light_split<Lane4>(tf, q, i, inv_unit, parts);
     return;
   }
-  for (size_t i = 0; i < n; i += 4) segment_light<Lane4>(tf, q, i, inv_unit);
+  for (size_t i = 0; i < n; i += 8) segment_light<Lane4x2>(tf, q, i, inv_unit);  // n: a multiple of 16
 }
 
 }  // namespace zs::light

@@ -2,6 +2,7 @@
 // compiled alone with its instruction set and chosen at run time.
 #include <immintrin.h>
 
+#include "volume/lane_pair.h"
 #include "volume/light_kernel.h"
 
 namespace zs::light {
@@ -9,6 +10,7 @@ namespace zs::light {
 namespace {
 
 struct Lane8 {
+  static constexpr int kWidth = 8;
   using Mask = __mmask8;
   __m512d v;
   Lane8() = default;
@@ -66,50 +68,7 @@ struct Lane8 {
   }
 };
 
-// Two Lane8 side by side: the same operations on 16 segments, written so
-// the two halves' instructions interleave and each hides the other's
-// latency (the kernel is a few long dependency chains: log, exp, Horner).
-struct Lane8x2 {
-  struct Mask {
-    __mmask8 a, b;
-  };
-  Lane8 a, b;
-  Lane8x2() = default;
-  explicit Lane8x2(double x) : a(x), b(x) {}
-  Lane8x2(Lane8 x, Lane8 y) : a(x), b(y) {}
-  static Lane8x2 load(const double* p) { return {Lane8::load(p), Lane8::load(p + 8)}; }
-  void store(double* p) const {
-    a.store(p);
-    b.store(p + 8);
-  }
-  friend Lane8x2 operator+(Lane8x2 x, Lane8x2 y) { return {x.a + y.a, x.b + y.b}; }
-  friend Lane8x2 operator-(Lane8x2 x, Lane8x2 y) { return {x.a - y.a, x.b - y.b}; }
-  friend Lane8x2 operator*(Lane8x2 x, Lane8x2 y) { return {x.a * y.a, x.b * y.b}; }
-  friend Lane8x2 operator/(Lane8x2 x, Lane8x2 y) { return {x.a / y.a, x.b / y.b}; }
-  friend Mask operator<(Lane8x2 x, Lane8x2 y) { return {x.a < y.a, x.b < y.b}; }
-  friend Mask operator>(Lane8x2 x, Lane8x2 y) { return {x.a > y.a, x.b > y.b}; }
-  friend Mask operator<=(Lane8x2 x, Lane8x2 y) { return {x.a <= y.a, x.b <= y.b}; }
-  friend Mask operator>=(Lane8x2 x, Lane8x2 y) { return {x.a >= y.a, x.b >= y.b}; }
-  friend Mask operator==(Lane8x2 x, Lane8x2 y) { return {x.a == y.a, x.b == y.b}; }
-  friend Mask not_less(Lane8x2 x, Lane8x2 y) { return {not_less(x.a, y.a), not_less(x.b, y.b)}; }
-  static Mask mask_and(Mask x, Mask y) { return {Lane8::mask_and(x.a, y.a), Lane8::mask_and(x.b, y.b)}; }
-  static void store_mask(uint8_t* p, Mask m) {
-    Lane8::store_mask(p, m.a);
-    Lane8::store_mask(p + 8, m.b);
-  }
-  static Lane8x2 lookup(const double* table, Lane8x2 n, bool small) {
-    return {Lane8::lookup(table, n.a, small), Lane8::lookup(table, n.b, small)};
-  }
-  friend Lane8x2 max(Lane8x2 x, Lane8x2 y) { return {max(x.a, y.a), max(x.b, y.b)}; }
-  friend Lane8x2 abs(Lane8x2 x) { return {abs(x.a), abs(x.b)}; }
-  friend Lane8x2 select(Mask m, Lane8x2 x, Lane8x2 y) { return {select(m.a, x.a, y.a), select(m.b, x.b, y.b)}; }
-  friend Lane8x2 round_int(Lane8x2 x) { return {round_int(x.a), round_int(x.b)}; }
-  friend Lane8x2 pow2_int(Lane8x2 x) { return {pow2_int(x.a), pow2_int(x.b)}; }
-  friend void split_exponent(Lane8x2 w, Lane8x2* e, Lane8x2* m) {
-    split_exponent(w.a, &e->a, &m->a);
-    split_exponent(w.b, &e->b, &m->b);
-  }
-};
+using Lane8x2 = LanePair<Lane8>;  // 16 segments per step
 
 }  // namespace
 
