@@ -28,6 +28,8 @@ struct LanePair {
   friend LanePair operator-(LanePair x, LanePair y) { return {x.a - y.a, x.b - y.b}; }
   friend LanePair operator*(LanePair x, LanePair y) { return {x.a * y.a, x.b * y.b}; }
   friend LanePair operator/(LanePair x, LanePair y) { return {x.a / y.a, x.b / y.b}; }
+  friend LanePair fmadd(LanePair x, LanePair y, LanePair z) { return {fmadd(x.a, y.a, z.a), fmadd(x.b, y.b, z.b)}; }
+  friend LanePair fnmadd(LanePair x, LanePair y, LanePair z) { return {fnmadd(x.a, y.a, z.a), fnmadd(x.b, y.b, z.b)}; }
   friend Mask operator<(LanePair x, LanePair y) { return {x.a < y.a, x.b < y.b}; }
   friend Mask operator>(LanePair x, LanePair y) { return {x.a > y.a, x.b > y.b}; }
   friend Mask operator<=(LanePair x, LanePair y) { return {x.a <= y.a, x.b <= y.b}; }

@@ -2,14 +2,16 @@
 // integrate_linear_piece) written once over a lane type V, so the same
 // arithmetic runs on one double (V = Lane1), four (Lane4, AVX2) or eight
 // (Lane8, AVX-512) and gives bit-identical results every way: only IEEE +,
-// -, *, / and exact bit manipulation, in the same order, no contraction into
-// FMA, and table lookups (exact).
+// -, *, /, fused multiply-add where written (fmadd: one rounding, as
+// std::fma; never contracted by the compiler) and exact bit manipulation, in
+// the same order, and table lookups (exact).
 //
 // exp and log are our own (Cody–Waite reduction and Taylor / atanh series,
 // ~1 ulp) because libm's are scalar. Inputs are those of a piece: w = 1 - a
 // in [1e-6, 1], and exp arguments <= 0 (clamped at -700, T < 1e-304).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -33,15 +35,16 @@ inline V exp_neg(V x) {  // e^x for x <= 0
   x = max(x, V(-700.0));
   const V n = round_int(x * V(1.4426950408889634));  // x / ln 2
   // ln 2 split so that n·ln2_hi is exact for |n| < 2^11.
-  const V r = (x - n * V(0.6931471803691238)) - n * V(1.9082149292705877e-10);
+  const V r = fmadd(n, V(-1.9082149292705877e-10), fmadd(n, V(-0.6931471803691238), x));
   // |r| <= 0.347: Taylor to r^11 (next term < 7e-15 relative), evaluated by
   // Estrin's scheme: a few short dependency chains instead of one long one.
   const V r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
-  const V p01 = V(1.0) + r, p23 = V(0.5) + V(1.0 / 6.0) * r;
-  const V p45 = V(1.0 / 24.0) + V(1.0 / 120.0) * r, p67 = V(1.0 / 720.0) + V(1.0 / 5040.0) * r;
-  const V p89 = V(1.0 / 40320.0) + V(1.0 / 362880.0) * r, pab = V(1.0 / 3628800.0) + V(1.0 / 39916800.0) * r;
-  const V p03 = p01 + r2 * p23, p47 = p45 + r2 * p67, p8b = p89 + r2 * pab;
-  const V p = (p03 + r4 * p47) + r8 * p8b;
+  const V p01 = V(1.0) + r, p23 = fmadd(V(1.0 / 6.0), r, V(0.5));
+  const V p45 = fmadd(V(1.0 / 120.0), r, V(1.0 / 24.0)), p67 = fmadd(V(1.0 / 5040.0), r, V(1.0 / 720.0));
+  const V p89 = fmadd(V(1.0 / 362880.0), r, V(1.0 / 40320.0));
+  const V pab = fmadd(V(1.0 / 39916800.0), r, V(1.0 / 3628800.0));
+  const V p03 = fmadd(r2, p23, p01), p47 = fmadd(r2, p67, p45), p8b = fmadd(r2, pab, p89);
+  const V p = fmadd(r8, p8b, fmadd(r4, p47, p03));
   return p * pow2_int(n);
 }
 
@@ -64,11 +67,11 @@ inline void log_pos2(V w0, V w1, V* L0, V* L1) {
   V* out[2] = {L0, L1};
   for (int k = 0; k < 2; ++k) {
     const V f2 = f[k] * f[k], f4 = f2 * f2, f8 = f4 * f4;
-    const V s01 = V(1.0) + V(1.0 / 3) * f2, s23 = V(1.0 / 5) + V(1.0 / 7) * f2;
-    const V s45 = V(1.0 / 9) + V(1.0 / 11) * f2, s67 = V(1.0 / 13) + V(1.0 / 15) * f2;
-    const V s = (s01 + f4 * s23) + f8 * ((s45 + f4 * s67) + f8 * V(1.0 / 17));
+    const V s01 = fmadd(V(1.0 / 3), f2, V(1.0)), s23 = fmadd(V(1.0 / 7), f2, V(1.0 / 5));
+    const V s45 = fmadd(V(1.0 / 11), f2, V(1.0 / 9)), s67 = fmadd(V(1.0 / 15), f2, V(1.0 / 13));
+    const V s = fmadd(f8, fmadd(f8, V(1.0 / 17), fmadd(f4, s67, s45)), fmadd(f4, s23, s01));
     const V ln_m = V(2.0) * f[k] * s;
-    *out[k] = e[k] * V(0.6931471803691238) + (e[k] * V(1.9082149292705877e-10) + ln_m);
+    *out[k] = fmadd(e[k], V(0.6931471803691238), fmadd(e[k], V(1.9082149292705877e-10), ln_m));
   }
 }
 
@@ -79,11 +82,11 @@ inline void log_pos2(V w0, V w1, V* L0, V* L1) {
 template <class V>
 inline V hermite8_mean(V g0, V g1, V m0, V m1, V n0, V n1, V T) {
   const V f1p = V(0.0) - g0, f2p = (V(0.0) - g1) * T;
-  const V f1pp = g0 * g0 + m0, f2pp = (g1 * g1 + m1) * T;
-  const V f1ppp = V(0.0) - (g0 * g0 * g0 + V(3.0) * g0 * m0 + n0);
-  const V f2ppp = (V(0.0) - (g1 * g1 * g1 + V(3.0) * g1 * m1 + n1)) * T;
-  return V(0.5) * (V(1.0) + T) + V(3.0 / 28) * (f1p - f2p) + V(1.0 / 84) * (f1pp + f2pp) +
-         V(1.0 / 1680) * (f1ppp - f2ppp);
+  const V f1pp = fmadd(g0, g0, m0), f2pp = fmadd(g1, g1, m1) * T;
+  const V f1ppp = V(0.0) - fmadd(g0, fmadd(g0, g0, V(3.0) * m0), n0);
+  const V f2ppp = (V(0.0) - fmadd(g1, fmadd(g1, g1, V(3.0) * m1), n1)) * T;
+  return fmadd(V(1.0 / 1680), f1ppp - f2ppp,
+               fmadd(V(1.0 / 84), f1pp + f2pp, fmadd(V(3.0 / 28), f1p - f2p, V(0.5) * (V(1.0) + T))));
 }
 
 // The rule's error is f⁽⁸⁾/25401600 with |f⁽⁸⁾| ≤ Y8(a, b, b·r, 2b·r², ...,
@@ -91,12 +94,15 @@ inline V hermite8_mean(V g0, V g1, V m0, V m1, V n0, V n1, V T) {
 // (a = max g, r = |dw|/min w, b = kappa·r, |g⁽ᵏ⁾| ≤ (k-1)!·b·r^(k-1)).
 template <class V>
 inline V hermite8_bound(V A, V B, V r) {
-  const V A2 = A * A, B2 = B * B;
-  return A2 * (A2 * (A2 * (A2 + V(28.0) * B) + V(210.0) * B2) + V(420.0) * B2 * B) + V(105.0) * B2 * B2 +
-         r * (A * (A2 * (V(56.0) * A2 * B + V(560.0) * B2) + V(840.0) * B2 * B) +
-              r * (A2 * (V(140.0) * A2 * B + V(1120.0) * B2) + V(700.0) * B2 * B +
-                   r * (A * (V(336.0) * A2 * B + V(1568.0) * B2) +
-                        r * (V(672.0) * A2 * B + V(1148.0) * B2 + r * (V(960.0) * A * B + V(720.0) * B * r)))));
+  // A bound, not a result: fused or not, it only decides which rule runs.
+  const V A2 = A * A, B2 = B * B, A2B = A2 * B, B3 = B2 * B;
+  const V r0 = fmadd(A2, fmadd(A2, fmadd(A2, fmadd(V(28.0), B, A2), V(210.0) * B2), V(420.0) * B3), V(105.0) * B2 * B2);
+  const V r1 = A * fmadd(A2, fmadd(V(56.0), A2B, V(560.0) * B2), V(840.0) * B3);
+  const V r2 = fmadd(A2, fmadd(V(140.0), A2B, V(1120.0) * B2), V(700.0) * B3);
+  const V r3 = A * fmadd(V(336.0), A2B, V(1568.0) * B2);
+  const V r4 = fmadd(V(672.0), A2B, V(1148.0) * B2);
+  const V r5 = B * fmadd(V(960.0), A, V(720.0) * r);
+  return fmadd(r, fmadd(r, fmadd(r, fmadd(r, fmadd(r, r5, r4), r3), r2), r1), r0);
 }
 // The rule is used where bound·max|c1 - c0| <= 1e-9·25401600.
 constexpr double kHermite8Tolerance = 1e-9 * 25401600.0;
@@ -113,7 +119,7 @@ inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out,
   const V kappa = in.len * V(inv_unit);
   // Mean of ln w over [w0, w1]: series in q where the difference cancels.
   const V d = w1 - w0, q = d / (w0 + w1), q2 = q * q;
-  const V series = V(0.5) * (L0 + L1) + q2 * (V(1.0 / 3) + q2 * (V(1.0 / 5) + q2 * V(1.0 / 7)));
+  const V series = fmadd(q2, fmadd(q2, fmadd(q2, V(1.0 / 7), V(1.0 / 5)), V(1.0 / 3)), V(0.5) * (L0 + L1));
   const V divided = (w1 * L1 - w0 * L0) / d - one;
   const V mean = select(abs(q) < V(1e-2), series, divided);
   const V T = exp_neg(kappa * mean);
@@ -128,7 +134,7 @@ inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out,
   out->ok = dcmax * hermite8_bound(A, B, r) <= V(tolerance);
   const V h0 = d * inv_w0, h1 = d * inv_w1;
   const V Jm = hermite8_mean(g0, g1, kappa * h0, kappa * h1, kappa * h0 * h0, kappa * h1 * h1, T);
-  for (int k = 0; k < 3; ++k) out->rgb[k] = in.c0[k] - in.c1[k] * T + dc[k] * Jm;
+  for (int k = 0; k < 3; ++k) out->rgb[k] = fmadd(dc[k], Jm, fnmadd(in.c1[k], T, in.c0[k]));
   out->T = T;
 }
 
@@ -275,6 +281,9 @@ struct Lane1 {
   friend Lane1 operator-(Lane1 a, Lane1 b) { return Lane1(a.v - b.v); }
   friend Lane1 operator*(Lane1 a, Lane1 b) { return Lane1(a.v * b.v); }
   friend Lane1 operator/(Lane1 a, Lane1 b) { return Lane1(a.v / b.v); }
+  // a·b + c and c - a·b, rounded once (std::fma is exact in every build).
+  friend Lane1 fmadd(Lane1 a, Lane1 b, Lane1 c) { return Lane1(std::fma(a.v, b.v, c.v)); }
+  friend Lane1 fnmadd(Lane1 a, Lane1 b, Lane1 c) { return Lane1(std::fma(-a.v, b.v, c.v)); }
   friend bool operator<(Lane1 a, Lane1 b) { return a.v < b.v; }
   friend bool operator>(Lane1 a, Lane1 b) { return a.v > b.v; }
   friend bool operator<=(Lane1 a, Lane1 b) { return a.v <= b.v; }

@@ -1,5 +1,5 @@
 // light_kernel.h on four doubles per lane (AVX2). This file alone is
-// compiled with -mavx2 and includes nothing but the kernel, so no inline
+// compiled with -mavx2 -mfma and includes nothing but the kernel, so no inline
 // function compiled for AVX2 can leak into code that runs without it.
 #include <immintrin.h>
 
@@ -23,6 +23,8 @@ struct Lane4 {
   friend Lane4 operator-(Lane4 a, Lane4 b) { return Lane4(_mm256_sub_pd(a.v, b.v)); }
   friend Lane4 operator*(Lane4 a, Lane4 b) { return Lane4(_mm256_mul_pd(a.v, b.v)); }
   friend Lane4 operator/(Lane4 a, Lane4 b) { return Lane4(_mm256_div_pd(a.v, b.v)); }
+  friend Lane4 fmadd(Lane4 a, Lane4 b, Lane4 c) { return Lane4(_mm256_fmadd_pd(a.v, b.v, c.v)); }
+  friend Lane4 fnmadd(Lane4 a, Lane4 b, Lane4 c) { return Lane4(_mm256_fnmadd_pd(a.v, b.v, c.v)); }
   friend __m256d operator<(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ); }
   friend __m256d operator>(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_GT_OQ); }
   friend __m256d operator<=(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_LE_OQ); }

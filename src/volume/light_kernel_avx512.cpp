@@ -21,6 +21,8 @@ struct Lane8 {
   friend Lane8 operator+(Lane8 a, Lane8 b) { return Lane8(_mm512_add_pd(a.v, b.v)); }
   friend Lane8 operator-(Lane8 a, Lane8 b) { return Lane8(_mm512_sub_pd(a.v, b.v)); }
   friend Lane8 operator*(Lane8 a, Lane8 b) { return Lane8(_mm512_mul_pd(a.v, b.v)); }
+  friend Lane8 fmadd(Lane8 a, Lane8 b, Lane8 c) { return Lane8(_mm512_fmadd_pd(a.v, b.v, c.v)); }
+  friend Lane8 fnmadd(Lane8 a, Lane8 b, Lane8 c) { return Lane8(_mm512_fnmadd_pd(a.v, b.v, c.v)); }
   friend Lane8 operator/(Lane8 a, Lane8 b) { return Lane8(_mm512_div_pd(a.v, b.v)); }
   friend __mmask8 operator<(Lane8 a, Lane8 b) { return _mm512_cmp_pd_mask(a.v, b.v, _CMP_LT_OQ); }
   friend __mmask8 operator>(Lane8 a, Lane8 b) { return _mm512_cmp_pd_mask(a.v, b.v, _CMP_GT_OQ); }

@@ -17,7 +17,7 @@ void segment_lights_scalar(const TfTables& tf, const SegmentSoA& q, size_t n, do
 
 bool have_avx2() {
 #if defined(__x86_64__) || defined(__i386__)
-  return __builtin_cpu_supports("avx2");
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 #else
   return false;
 #endif
