@@ -16,6 +16,24 @@ def cpu_name():
     return "unknown CPU"
 
 
+def cpu_vector_isa():
+    """The widest vector kernel zsweep picks on this CPU (segment_batch.cpp):
+    the hosts this project runs on differ in it, and it moves the timings."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("flags"):
+                    flags = set(line.split(":", 1)[1].split())
+                    if "avx512f" in flags:
+                        return "AVX-512"
+                    if "avx2" in flags and "fma" in flags:
+                        return "AVX2, no AVX-512"
+                    return "no AVX2"
+    except OSError:
+        pass
+    return "unknown vector ISA"
+
+
 def write_csv(path, rows):
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with open(path, "w", newline="") as f:

@@ -18,7 +18,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_common import cpu_name, replace_block, write_csv  # noqa: E402
+from bench_common import cpu_name, cpu_vector_isa, replace_block, write_csv  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
@@ -94,7 +94,7 @@ def main():
 def update_doc(rows, a):
     path = os.path.join(ROOT, "docs", "benchmarks.md")
     lines = [
-        f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores), "
+        f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores, {cpu_vector_isa()}), "
         f"`exact` integrator, `{a.scan}` scan, streamed EXR output, default memory budget (half of RAM), "
         f"`scripts/bench-scaling --meshes {a.meshes} --sizes {a.sizes} --threads {a.threads} --repeat {a.repeat}` "
         f"(best of {a.repeat} interleaved round(s)). Speedup: against one thread in the same run.",

@@ -23,7 +23,7 @@ import vtk
 vtk.vtkObject.GlobalWarningDisplayOff()  # VTK ZSweep warns "Undefined edge case" per face
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_common import cpu_name, replace_block, write_csv  # noqa: E402
+from bench_common import cpu_name, cpu_vector_isa, replace_block, write_csv  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
@@ -236,7 +236,7 @@ def main():
 def update_doc(rows, a):
     path = os.path.join(ROOT, "docs", "benchmarks.md")
     lines = [
-        f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores), one thread each "
+        f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores, {cpu_vector_isa()}), one thread each "
         f"(VTK's ray caster set to one thread), `exact` integrator, `{a.scan}` scan, "
         f"`scripts/bench-vs-vtk --sizes {a.sizes} --meshes {a.meshes} --repeat {a.repeat}`: best of {a.repeat} "
         f"interleaved rounds of one steady-state frame each (VTK's ZSweep mapper: {a.vtk_zsweep_rounds} round(s), "

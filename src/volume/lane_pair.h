@@ -41,8 +41,8 @@ struct LanePair {
     L::store_mask(p, m.a);
     L::store_mask(p + L::kWidth, m.b);
   }
-  static LanePair lookup(const double* table, LanePair n, bool small) {
-    return {L::lookup(table, n.a, small), L::lookup(table, n.b, small)};
+  static LanePair lookup(const double* table, LanePair n, int entries) {
+    return {L::lookup(table, n.a, entries), L::lookup(table, n.b, entries)};
   }
   friend LanePair max(LanePair x, LanePair y) { return {max(x.a, y.a), max(x.b, y.b)}; }
   friend LanePair abs(LanePair x) { return {abs(x.a), abs(x.b)}; }

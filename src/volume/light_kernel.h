@@ -190,17 +190,17 @@ inline void breakpoint_counts(const TfTables& tf, const SegmentSoA& q, size_t i,
 // interval n: the piece's two ends.
 template <class V>
 inline void piece_ends(const TfTables& tf, V n, V sa, V sb, PieceIn<V>* in) {
-  const bool small = tf.nb + 1 <= 8;
+  const int entries = tf.nb + 1;
   const V zero(0.0);
   const auto inside = V::mask_and(n >= V(1.0), n <= V(double(tf.nb - 1)));
-  const V left = V::lookup(tf.left, n, small), inv_w = V::lookup(tf.inv_w, n, small);
+  const V left = V::lookup(tf.left, n, entries), inv_w = V::lookup(tf.inv_w, n, entries);
   const V t0 = select(inside, (sa - left) * inv_w, zero), t1 = select(inside, (sb - left) * inv_w, zero);
-  V lo = V::lookup(tf.lo[3], n, small), d = V::lookup(tf.d[3], n, small);
+  V lo = V::lookup(tf.lo[3], n, entries), d = V::lookup(tf.d[3], n, entries);
   in->a0 = lo + t0 * d;
   in->a1 = lo + t1 * d;
   for (int k = 0; k < 3; ++k) {
-    lo = V::lookup(tf.lo[k], n, small);
-    d = V::lookup(tf.d[k], n, small);
+    lo = V::lookup(tf.lo[k], n, entries);
+    d = V::lookup(tf.d[k], n, entries);
     in->c0[k] = lo + t0 * d;
     in->c1[k] = lo + t1 * d;
   }
@@ -237,7 +237,7 @@ inline void segment_light_split(const TfTables& tf, const SegmentSoA& q, size_t 
   V n0, n1;
   breakpoint_counts(tf, q, i, s0, s1, &n0, &n1);
   const auto same = n0 == n1;
-  const V cut = select(same, half * (s0 + s1), V::lookup(tf.cut, max(n0, n1), tf.nb + 1 <= 8));
+  const V cut = select(same, half * (s0 + s1), V::lookup(tf.cut, max(n0, n1), tf.nb + 1));
   const V frac = select(same, half, (cut - s0) / (s1 - s0));
   auto ok = abs(n1 - n0) <= one;
   const double tol = kHermite8Tolerance / double(2 * parts);
@@ -294,7 +294,7 @@ struct Lane1 {
   void store(double* p) const { *p = v; }
   static bool mask_and(bool a, bool b) { return a && b; }
   static void store_mask(uint8_t* p, bool m) { *p = m; }
-  static Lane1 lookup(const double* table, Lane1 n, bool) { return Lane1(table[size_t(n.v)]); }
+  static Lane1 lookup(const double* table, Lane1 n, int) { return Lane1(table[size_t(n.v)]); }
   // max/min as the AVX instructions define them (second operand on NaN).
   friend Lane1 max(Lane1 a, Lane1 b) { return Lane1(a.v > b.v ? a.v : b.v); }
   friend Lane1 abs(Lane1 a) {

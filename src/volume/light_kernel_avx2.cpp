@@ -33,19 +33,21 @@ struct Lane4 {
   friend __m256d not_less(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_NLT_UQ); }
   static __m256d mask_and(__m256d a, __m256d b) { return _mm256_and_pd(a, b); }
   static void store_mask(uint8_t* p, __m256d m) {
-    const int bits = _mm256_movemask_pd(m);
-    for (int l = 0; l < 4; ++l) p[l] = uint8_t((bits >> l) & 1);
+    // Lane l's bit to byte l (the shifted copies do not overlap), one store.
+    const uint32_t bytes = (uint32_t(_mm256_movemask_pd(m)) * 0x204081u) & 0x01010101u;
+    std::memcpy(p, &bytes, 4);
   }
-  // table[n] per lane; n holds small non-negative integers. Tables of at
-  // most 8 entries are permuted from two registers (a double is a pair of
-  // 32-bit halves for vpermps), longer ones gathered.
-  static Lane4 lookup(const double* table, Lane4 n, bool small) {
+  // table[n] per lane; n holds integers in [0, entries). Tables of at most
+  // 4 entries are permuted from one register, of at most 8 from two (a
+  // double is a pair of 32-bit halves for vpermps), longer ones gathered.
+  static Lane4 lookup(const double* table, Lane4 n, int entries) {
     const __m128i i32 = _mm256_cvttpd_epi32(n.v);
-    if (small) {
+    if (entries <= 8) {
       const __m256i i64 = _mm256_cvtepu32_epi64(i32);
       const __m256i lo = _mm256_slli_epi64(_mm256_and_si256(i64, _mm256_set1_epi64x(3)), 1);
       const __m256i pair = _mm256_or_si256(lo, _mm256_slli_epi64(_mm256_add_epi64(lo, _mm256_set1_epi64x(1)), 32));
       const __m256 a = _mm256_permutevar8x32_ps(_mm256_castpd_ps(_mm256_loadu_pd(table)), pair);
+      if (entries <= 4) return Lane4(_mm256_castps_pd(a));
       const __m256 b = _mm256_permutevar8x32_ps(_mm256_castpd_ps(_mm256_loadu_pd(table + 4)), pair);
       const __m256d high = _mm256_castsi256_pd(_mm256_cmpgt_epi64(i64, _mm256_set1_epi64x(3)));
       return Lane4(_mm256_blendv_pd(_mm256_castps_pd(a), _mm256_castps_pd(b), high));

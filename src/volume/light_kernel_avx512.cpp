@@ -37,8 +37,8 @@ struct Lane8 {
   // table[n] per lane: one permute from a register when the table has at
   // most 8 entries (the index is read from n + 2^52's low mantissa bits),
   // a gather otherwise.
-  static Lane8 lookup(const double* table, Lane8 n, bool small) {
-    if (small) {
+  static Lane8 lookup(const double* table, Lane8 n, int entries) {
+    if (entries <= 8) {
       const __m512i idx = _mm512_castpd_si512(_mm512_add_pd(n.v, _mm512_set1_pd(4503599627370496.0)));
       return Lane8(_mm512_permutexvar_pd(idx, _mm512_loadu_pd(table)));
     }
