@@ -37,6 +37,7 @@ struct LanePair {
   friend Mask operator==(LanePair x, LanePair y) { return {x.a == y.a, x.b == y.b}; }
   friend Mask not_less(LanePair x, LanePair y) { return {not_less(x.a, y.a), not_less(x.b, y.b)}; }
   static Mask mask_and(Mask x, Mask y) { return {L::mask_and(x.a, y.a), L::mask_and(x.b, y.b)}; }
+  static bool all(Mask m) { return L::all(m.a) && L::all(m.b); }
   static void store_mask(uint8_t* p, Mask m) {
     L::store_mask(p, m.a);
     L::store_mask(p + L::kWidth, m.b);

@@ -106,12 +106,26 @@ inline V hermite8_bound(V A, V B, V r) {
 }
 // The rule is used where bound·max|c1 - c0| <= 1e-9·25401600.
 constexpr double kHermite8Tolerance = 1e-9 * 25401600.0;
+// Every term of the bound is a coefficient times A^i·B^j·r^k with
+// i + 2j + k = 8, so where A <= m, B <= m² and r <= m it is at most the sum
+// of the coefficients times m^8.
+constexpr double kHermite8CoefficientSum = 9584.0;
+// The m below which every piece passes the bound with a factor 2 to spare
+// (so the polynomial, rounded, would pass it too): m^8 = tolerance /
+// (2 · 9584 · largest |c1 - c0| of a piece); "thin" pieces (a small optical
+// depth and little change of opacity) skip the polynomial.
+inline double hermite8_thin_limit(double max_dc, double tolerance = kHermite8Tolerance) {
+  if (!(max_dc > 0)) return 1e3;
+  return std::fmin(1e3, std::pow(tolerance / (2.0 * kHermite8CoefficientSum * max_dc), 0.125));
+}
 
 // One piece: colour and opacity linear, optical depth in closed form, the
 // mean of T by the Hermite rule where its bound allows.
+// thin: hermite8_thin_limit for this tolerance and the pieces' colours, or
+// 0; when every lane's piece is that thin, `ok` needs no polynomial.
 template <class V>
 inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out,
-                        double tolerance = kHermite8Tolerance) {
+                        double tolerance = kHermite8Tolerance, double thin = 0.0) {
   const V one(1.0);
   const V w0 = one - in.a0, w1 = one - in.a1;
   V L0, L1;
@@ -126,12 +140,16 @@ inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out,
   const V g0 = V(0.0) - kappa * L0, g1 = V(0.0) - kappa * L1;
   const V inv_w01 = one / (w0 * w1), inv_w0 = w1 * inv_w01, inv_w1 = w0 * inv_w01;
   const V A = max(g0, g1), r = abs(d) * max(inv_w0, inv_w1), B = kappa * r;
-  V dc[3], dcmax(0.0);
-  for (int k = 0; k < 3; ++k) {
-    dc[k] = in.c1[k] - in.c0[k];
-    dcmax = max(dcmax, abs(dc[k]));
+  V dc[3];
+  for (int k = 0; k < 3; ++k) dc[k] = in.c1[k] - in.c0[k];
+  const auto is_thin = V::mask_and(V::mask_and(A <= V(thin), B <= V(thin * thin)), r <= V(thin));
+  if (V::all(is_thin)) {
+    out->ok = is_thin;  // all true: the bound passes (see hermite8_thin_limit)
+  } else {
+    V dcmax(0.0);
+    for (int k = 0; k < 3; ++k) dcmax = max(dcmax, abs(dc[k]));
+    out->ok = dcmax * hermite8_bound(A, B, r) <= V(tolerance);
   }
-  out->ok = dcmax * hermite8_bound(A, B, r) <= V(tolerance);
   const V h0 = d * inv_w0, h1 = d * inv_w1;
   const V Jm = hermite8_mean(g0, g1, kappa * h0, kappa * h1, kappa * h0 * h0, kappa * h1 * h1, T);
   for (int k = 0; k < 3; ++k) out->rgb[k] = fmadd(dc[k], Jm, fnmadd(in.c1[k], T, in.c0[k]));
@@ -153,6 +171,7 @@ struct TfTables {
   const double* inv_w = nullptr;
   const double* lo[4] = {};
   const double* d[4] = {};
+  double thin = 0;  // hermite8_thin_limit of the largest colour slope |d[0..2]|
 };
 
 // A batch of segments, structure of arrays (n a multiple of the lane count).
@@ -218,7 +237,7 @@ inline void segment_light(const TfTables& tf, const SegmentSoA& q, size_t i, dou
   piece_ends(tf, n0, s0, s1, &in);
   in.len = V::load(q.len + i);
   PieceOut<V> out;
-  piece_light(in, inv_unit, &out);
+  piece_light(in, inv_unit, &out, kHermite8Tolerance, tf.thin);
   for (int k = 0; k < 3; ++k) out.rgb[k].store(q.rgb[k] + i);
   out.T.store(q.T + i);
   V::store_mask(q.ok + i, V::mask_and(out.ok, n0 == n1));
@@ -293,6 +312,7 @@ struct Lane1 {
   static Lane1 load(const double* p) { return Lane1(*p); }
   void store(double* p) const { *p = v; }
   static bool mask_and(bool a, bool b) { return a && b; }
+  static bool all(bool m) { return m; }
   static void store_mask(uint8_t* p, bool m) { *p = m; }
   static Lane1 lookup(const double* table, Lane1 n, int) { return Lane1(table[size_t(n.v)]); }
   // max/min as the AVX instructions define them (second operand on NaN).

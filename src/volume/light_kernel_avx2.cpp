@@ -32,6 +32,7 @@ struct Lane4 {
   friend __m256d operator==(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_EQ_OQ); }
   friend __m256d not_less(Lane4 a, Lane4 b) { return _mm256_cmp_pd(a.v, b.v, _CMP_NLT_UQ); }
   static __m256d mask_and(__m256d a, __m256d b) { return _mm256_and_pd(a, b); }
+  static bool all(__m256d m) { return _mm256_movemask_pd(m) == 15; }
   static void store_mask(uint8_t* p, __m256d m) {
     // Lane l's bit to byte l (the shifted copies do not overlap), one store.
     const uint32_t bytes = (uint32_t(_mm256_movemask_pd(m)) * 0x204081u) & 0x01010101u;

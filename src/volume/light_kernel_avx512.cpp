@@ -31,6 +31,7 @@ struct Lane8 {
   friend __mmask8 operator==(Lane8 a, Lane8 b) { return _mm512_cmp_pd_mask(a.v, b.v, _CMP_EQ_OQ); }
   friend __mmask8 not_less(Lane8 a, Lane8 b) { return _mm512_cmp_pd_mask(a.v, b.v, _CMP_NLT_UQ); }
   static __mmask8 mask_and(__mmask8 a, __mmask8 b) { return __mmask8(a & b); }
+  static bool all(__mmask8 m) { return m == 0xFF; }
   static void store_mask(uint8_t* p, __mmask8 m) {
     for (int l = 0; l < 8; ++l) p[l] = uint8_t((m >> l) & 1);
   }

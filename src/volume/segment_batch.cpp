@@ -1,6 +1,7 @@
 #include "volume/segment_batch.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -82,6 +83,10 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
     tf_tables_.lo[c] = table(2 + c);
     tf_tables_.d[c] = table(6 + c);
   }
+  double max_dc = 0;  // a one-interval piece's |c1 - c0| is at most its interval's |d|
+  for (int c = 0; c < 3; ++c)
+    for (int n = 0; n <= nb; ++n) max_dc = std::max(max_dc, std::abs(table(6 + c)[n]));
+  tf_tables_.thin = light::hermite8_thin_limit(max_dc);
 }
 
 void SegmentBatch::run_kernel() {

@@ -145,5 +145,37 @@ TEST(SegmentIntegrator, BatchKernelsMatchBitForBit) {
   check_batch_widths(mid_tf, -0.1, 1.1, 13);
 }
 
+
+// The kernels skip the Hermite bound's polynomial when every lane's piece is
+// "thin" (light_kernel.h, hermite8_thin_limit). That is only sound if every
+// thin piece passes the polynomial test anyway, with room for its rounding:
+// check it at the corners of the thin box and at random points inside.
+TEST(SegmentIntegrator, ThinPiecesPassTheHermiteBound) {
+  using light::Lane1;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u01(0, 1);
+  int checked = 0;
+  for (double max_dc : {1e-6, 1e-3, 0.05, 0.6, 1.0, 3.0}) {
+    const double m = light::hermite8_thin_limit(max_dc);
+    ASSERT_GT(m, 0.0);
+    double worst = 0;  // largest bound·dc over the tolerance
+    for (int i = 0; i < 20000; ++i) {
+      // Corners first (each of A, B, r at 0 or its limit), then uniform.
+      const double A = i < 8 ? (i & 1 ? m : 0) : m * u01(rng);
+      const double B = i < 8 ? (i & 2 ? m * m : 0) : m * m * u01(rng);
+      const double r = i < 8 ? (i & 4 ? m : 0) : m * u01(rng);
+      const double b = light::hermite8_bound(Lane1(A), Lane1(B), Lane1(r)).v;
+      worst = std::max(worst, b * max_dc / light::kHermite8Tolerance);
+      ++checked;
+    }
+    EXPECT_LE(worst, 0.5 + 1e-12) << "max_dc " << max_dc;  // the factor 2 to spare
+    EXPECT_GE(worst, 0.49) << "max_dc " << max_dc << ": the limit is needlessly small";
+  }
+  // A limit that is too large must be caught: twice the limit fails somewhere.
+  const double m2 = 2 * light::hermite8_thin_limit(1.0);
+  EXPECT_GT(light::hermite8_bound(Lane1(m2), Lane1(m2 * m2), Lane1(m2)).v, light::kHermite8Tolerance);
+  EXPECT_EQ(checked, 6 * 20000);
+}
+
 }  // namespace
 }  // namespace zs
