@@ -4,14 +4,18 @@
 // profiling harness like zsweep_frame: it tells how much of a frame's time
 // the integration of its segments costs on this machine (docs/performance.md).
 //
-//   zsweep_kernel MESH.off [segments=1000000] [rounds=5]
+//   zsweep_kernel MESH.off [segments=1000000] [rounds=5] [len_lo=-3] [len_hi=0]
 //
 // Segments use the mesh's automatic transfer function (as `zsweep render
 // MESH`): s0 uniform over the scalar range, s1 within 1% of the range from
 // it (so most lie in one interval, as in a render), lengths log-uniform over
-// [1e-3, 1] unit distances.
+// [10^len_lo, 10^len_hi] unit distances. The transfer function is set by the
+// mesh's scalar range and size, so on these synthetic segments every mesh
+// gives the same times; the mesh argument keeps to how a render sets it up.
+// With ZSWEEP_KERNEL=scalar|avx2 set, only that (capped) width runs.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -25,7 +29,7 @@
 int main(int argc, char** argv) {
   using namespace zs;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: zsweep_kernel MESH.off [segments] [rounds]\n");
+    std::fprintf(stderr, "usage: zsweep_kernel MESH.off [segments] [rounds] [len_lo] [len_hi]\n");
     return 2;
   }
   try {
@@ -33,6 +37,10 @@ int main(int argc, char** argv) {
     const size_t n = argc > 2 ? size_t(std::atof(argv[2])) : 1000000;
     const int rounds = argc > 3 ? std::atoi(argv[3]) : 5;
     const double lg_lo = argc > 4 ? std::atof(argv[4]) : -3, lg_hi = argc > 5 ? std::atof(argv[5]) : 0;
+    if (n < 1 || rounds < 1 || !(lg_lo <= lg_hi)) {
+      std::fprintf(stderr, "zsweep_kernel: need segments >= 1, rounds >= 1 and len_lo <= len_hi\n");
+      return 2;
+    }
     const TransferFunction tf = default_transfer_function(mesh);
     const SegmentIntegrator integ(tf, Integrator::Exact);
     const double lo = tf.breakpoints().front(), hi = tf.breakpoints().back(), unit = tf.unit_distance();
