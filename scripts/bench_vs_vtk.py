@@ -49,7 +49,7 @@ def mesh_args(name):
     return args
 
 
-def scene_for(info, vtu, size, scan):
+def scene_for(info, vtu, size, scan, precision="double"):
     lo, hi = info["bounds"]
     c = [(a + b) / 2 for a, b in zip(lo, hi)]
     r = 0.5 * math.dist(lo, hi)
@@ -65,7 +65,7 @@ def scene_for(info, vtu, size, scan):
             "opacity": [[smin, 0.0], [smax, 0.6]],
             "unit_distance": 2 * r / 50,
         },
-        "render": {"scan": scan, "integrator": "exact"},
+        "render": {"scan": scan, "integrator": "exact", "precision": precision},
     }
 
 
@@ -81,10 +81,11 @@ def time_zsweep(scene_path, out_exr, repeat):
     return min(frames[1:-1]) / 1000.0
 
 
-def check_against_reference(scene_path, out_exr):
-    """Max abs difference of our image from our reference ray caster."""
-    ref = out_exr.replace(".exr", "-reference.exr")
-    run([ZSWEEP, "reference", scene_path, "-o", ref])
+def check_against_reference(scene_path, out_exr, ref):
+    """Max abs difference of our image from our reference ray caster (ref:
+    its image, rendered here the first time)."""
+    if not os.path.exists(ref):
+        run([ZSWEEP, "reference", scene_path, "-o", ref])
     c = json.loads(run([ZSWEEP, "compare", out_exr, ref, "--json"]).stdout)
     return c["max_abs"]
 
@@ -176,6 +177,8 @@ def main():
                          "blunt and post 512²)")
     ap.add_argument("--vtk-zsweep-rounds", type=int, default=1,
                     help="rounds that also time VTK's ZSweep mapper (it is the slow one)")
+    ap.add_argument("--precisions", default="double,single",
+                    help="the exact integrator's kernel: double (bit-identical on every CPU), single, or both")
     ap.add_argument("--csv", default=os.path.join(ROOT, "docs", "benchmarks.csv"))
     ap.add_argument("--images", default=os.path.join(ROOT, "build", "bench-vs-vtk"))
     ap.add_argument("--no-doc", action="store_true", help="do not update docs/benchmarks.md")
@@ -188,11 +191,16 @@ def main():
         run([ZSWEEP, "mesh", "convert"] + mesh_args(name) + [vtu])
         info = json.loads(run([ZSWEEP, "mesh", "info", vtu, "--json"]).stdout)
         for size in [int(s) for s in a.sizes.split(",")]:
+            precs = a.precisions.split(",")
             scene = scene_for(info, vtu, size, a.scan)
-            scene_path = os.path.join(work, f"{name}-{size}.json")
-            with open(scene_path, "w") as f:
-                json.dump(scene, f)
+            scenes = {}
+            for p in precs:
+                scenes[p] = os.path.join(work, f"{name}-{size}-{p}.json")
+                with open(scenes[p], "w") as f:
+                    json.dump(scene_for(info, vtu, size, a.scan, p), f)
             base = os.path.join(a.images, f"{name}-{size}")
+            if os.path.exists(base + "-reference.exr"):
+                os.remove(base + "-reference.exr")  # a previous run's, perhaps of another scene
             mappers = [m for m in ("zsweep", "raycast") if m in a.mappers.split(",")]
             # VTK's ZSweep mapper takes minutes per frame on large meshes
             # (hours at 1024² of post): left out above a work limit.
@@ -204,10 +212,11 @@ def main():
             # cent within minutes): best of each, so every ratio is measured
             # in one stretch of time.
             nan = float("nan")
-            best = {"ours": nan, **{m: nan for m in mappers}}
+            best = {**{p: nan for p in precs}, **{m: nan for m in mappers}}
             for rnd in range(a.repeat):
-                t = time_zsweep(scene_path, base + "-zsweep.exr", 1)
-                best["ours"] = t if best["ours"] != best["ours"] else min(best["ours"], t)
+                for p in precs:
+                    t = time_zsweep(scenes[p], base + f"-zsweep-{p}.exr", 1)
+                    best[p] = t if best[p] != best[p] else min(best[p], t)
                 for m in mappers:
                     if m == "zsweep" and rnd >= a.vtk_zsweep_rounds:
                         continue
@@ -216,18 +225,19 @@ def main():
             for m in mappers:
                 vtks[m].save(base + f"-vtk-{m}.png")
             vtks.clear()
-            ours = best["ours"]
-            err = check_against_reference(scene_path, base + "-zsweep.exr")
             vz = best.get("zsweep", nan)
             vr = best.get("raycast", nan)
-            row = {"mesh": name, "tets": info["tets"], "size": size, "zsweep_s": ours,
-                   "vtk_zsweep_s": vz, "vtk_raycast_s": vr,
-                   "speedup_vs_vtk_zsweep": vz / ours, "speedup_vs_vtk_raycast": vr / ours,
-                   "max_abs_vs_reference": err}
-            rows.append(row)
-            print(f"{name:6s} {size:5d}²  zsweep {ours:7.3f} s (max abs vs reference {err:.2g})   "
-                  f"VTK ZSweep {vz:7.3f} s ({vz / ours:5.1f}x)   "
-                  f"VTK ray cast {vr:7.3f} s ({vr / ours:5.2f}x)", flush=True)
+            for p in precs:
+                ours = best[p]
+                err = check_against_reference(scenes[p], base + f"-zsweep-{p}.exr", base + "-reference.exr")
+                row = {"mesh": name, "tets": info["tets"], "size": size, "precision": p, "zsweep_s": ours,
+                       "vtk_zsweep_s": vz, "vtk_raycast_s": vr,
+                       "speedup_vs_vtk_zsweep": vz / ours, "speedup_vs_vtk_raycast": vr / ours,
+                       "max_abs_vs_reference": err}
+                rows.append(row)
+                print(f"{name:6s} {size:5d}² {p:6s}  zsweep {ours:7.3f} s (max abs vs reference {err:.2g})   "
+                      f"VTK ZSweep {vz:7.3f} s ({vz / ours:5.1f}x)   "
+                      f"VTK ray cast {vr:7.3f} s ({vr / ours:5.2f}x)", flush=True)
     write_csv(a.csv, rows)
     if not a.no_doc:
         update_doc(rows, a)
@@ -237,14 +247,14 @@ def update_doc(rows, a):
     path = os.path.join(ROOT, "docs", "benchmarks.md")
     lines = [
         f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores, {cpu_vector_isa()}), one thread each "
-        f"(VTK's ray caster set to one thread), `exact` integrator, `{a.scan}` scan, "
+        f"(VTK's ray caster set to one thread), `exact` integrator ({a.precisions.replace(',', ' and ')} kernel), `{a.scan}` scan, "
         f"`scripts/bench-vs-vtk --sizes {a.sizes} --meshes {a.meshes} --repeat {a.repeat}`: best of {a.repeat} "
         f"interleaved rounds of one steady-state frame each (VTK's ZSweep mapper: {a.vtk_zsweep_rounds} round(s), "
         f"and only where tets × pixels ≤ {a.vtk_zsweep_max_work:.1e}; \"–\" where not run). Targets: ≥ 25× VTK's "
         f"ZSweep mapper, ≥ 3× VTK's ray caster, image within 1/255 of our reference.",
         "",
-        "| mesh | tets | size | zsweep (s) | vs reference | VTK ZSweep (s) | ratio | ≥ 25× | VTK ray cast (s) | ratio | ≥ 3× |",
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | :---: | ---: | ---: | :---: |",
+        "| mesh | tets | size | kernel | zsweep (s) | vs reference | VTK ZSweep (s) | ratio | ≥ 25× | VTK ray cast (s) | ratio | ≥ 3× |",
+        "| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | :---: | ---: | ---: | :---: |",
     ]
     def mark(ratio, target):
         return "–" if ratio != ratio else ("yes" if ratio >= target else "**no**")
@@ -253,7 +263,7 @@ def update_doc(rows, a):
     def ratio(x, digits):
         return "–" if x != x else f"{x:.{digits}f}×"
     for r in rows:
-        lines.append(f"| {r['mesh']} | {r['tets']:,} | {r['size']}² | {r['zsweep_s']:.3f} | "
+        lines.append(f"| {r['mesh']} | {r['tets']:,} | {r['size']}² | {r['precision']} | {r['zsweep_s']:.3f} | "
                      f"{r['max_abs_vs_reference']:.1e} | {sec(r['vtk_zsweep_s'])} | "
                      f"{ratio(r['speedup_vs_vtk_zsweep'], 1)} | {mark(r['speedup_vs_vtk_zsweep'], 25)} | "
                      f"{sec(r['vtk_raycast_s'])} | {ratio(r['speedup_vs_vtk_raycast'], 2)} | "

@@ -58,6 +58,11 @@ std::vector<Setting> settings_for(const RenderSettings& base, const std::vector<
       Setting s{"integrator", to_string(i), b};
       s.rs.integrator = i;
       out.push_back(s);
+      if (i == Integrator::Exact) {  // the same in single precision
+        Setting f{"integrator", "exact-single", b};
+        f.rs.single_precision = true;
+        out.push_back(f);
+      }
     }
   if (has("scan")) {
     for (ScanStrategy k : {ScanStrategy::BBox, ScanStrategy::Span}) {

@@ -23,6 +23,8 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
   cmd.add_option("--scan", scan, "Scan strategy: span (default), bbox (same image, slower), bconvert");
   cmd.add_option("--variant", variant, "B-Convert variant: truncate, round, dilate, dda3d, runlength");
   cmd.add_option("--integrator", integrator, "exact, linear, preintegrated or taylor2");
+  cmd.add_option("--precision", precision,
+                 "Exact integrator's kernel: double (default) or single (faster; error bound in docs/accuracy.md)");
   cmd.add_option("--early-termination", early_termination, "Stop a pixel below t/510 transmittance (t in 8-bit levels)");
   cmd.add_option("--max-list-length", max_list_length, "Force compositing when a pixel list grows past this");
   cmd.add_option("--tile-size", tile_size, "Screen tile size in pixels (default 64); the image does not depend on it")
@@ -41,6 +43,8 @@ SceneInput SceneArgs::load() const {
     throw std::runtime_error("--variant must be truncate, round, dilate, dda3d or runlength");
   if (!integrator.empty() && !parse_integrator(integrator, &knobs.integrator))
     throw std::runtime_error("--integrator must be exact, linear, preintegrated or taylor2");
+  if (!precision.empty() && precision != "double" && precision != "single")
+    throw std::runtime_error("--precision must be double or single");
 
   SceneInput in = load_scene_input(input, opt);
   RenderSettings& rs = in.scene.settings;
@@ -49,6 +53,7 @@ SceneInput SceneArgs::load() const {
   if (!scan.empty()) rs.scan = knobs.scan;
   if (!variant.empty()) rs.bconvert_variant = knobs.bconvert_variant;
   if (!integrator.empty()) rs.integrator = knobs.integrator;
+  if (!precision.empty()) rs.single_precision = precision == "single";
   if (memory_budget_mb > 0) rs.memory_budget_bytes = uint64_t(memory_budget_mb * 1048576.0);
   if (early_termination >= 0) rs.early_termination = early_termination;
   if (max_list_length >= 0) rs.max_list_length = uint32_t(max_list_length);

@@ -21,7 +21,7 @@ struct SceneArgs {
   uint32_t width = 0, height = 0;
   std::string projection;
   // Engine knobs.
-  std::string scan, variant, integrator;
+  std::string scan, variant, integrator, precision;
   double memory_budget_mb = 0;
   double early_termination = -1;
   int64_t max_list_length = -1;

@@ -201,7 +201,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   if (j.contains("render")) {
     const json& r = j["render"];
     check_keys(c, r, "render",
-               {"scan", "bconvert_variant", "integrator", "early_termination", "max_list_length", "memory_budget_mb"});
+               {"scan", "bconvert_variant", "integrator", "precision", "early_termination", "max_list_length",
+                "memory_budget_mb"});
     if (r.contains("bconvert_variant")) {
       if (!r["bconvert_variant"].is_string() ||
           !parse_bconvert_variant(r["bconvert_variant"].get<std::string>(), &rs.bconvert_variant))
@@ -214,6 +215,11 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     if (r.contains("integrator")) {
       if (!r["integrator"].is_string() || !parse_integrator(r["integrator"].get<std::string>(), &rs.integrator))
         c.fail("render.integrator must be \"exact\", \"linear\", \"preintegrated\" or \"taylor2\"");
+    }
+    if (r.contains("precision")) {
+      const json& p = r["precision"];
+      if (!p.is_string() || (p != "double" && p != "single")) c.fail("render.precision must be \"double\" or \"single\"");
+      rs.single_precision = p == "single";
     }
     if (r.contains("early_termination")) {
       rs.early_termination = num(c, r["early_termination"], "render.early_termination");

@@ -5,7 +5,7 @@
 // main binary loads libhwy through OpenImageIO, whose start-up uses an
 // instruction valgrind 3.19 cannot decode).
 //
-//   zsweep_frame MESH.off [size=512] [frames=3] [threads=1] [scan=span] [tile=64]
+//   zsweep_frame MESH.off [size=512] [frames=3] [threads=1] [scan=span] [tile=64] [precision=double]
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -20,7 +20,7 @@
 int main(int argc, char** argv) {
   using namespace zs;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: zsweep_frame MESH.off [size] [frames] [threads] [scan] [tile]\n");
+    std::fprintf(stderr, "usage: zsweep_frame MESH.off [size] [frames] [threads] [scan] [tile] [double|single]\n");
     return 2;
   }
   try {
@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
     rs.threads = argc > 4 ? std::atoi(argv[4]) : 1;
     if (!parse_scan_strategy(argc > 5 ? argv[5] : "span", &rs.scan)) throw std::runtime_error("unknown scan");
     if (argc > 6) rs.tile_size = uint32_t(std::atoi(argv[6]));
+    if (argc > 7) rs.single_precision = !std::strcmp(argv[7], "single");
     rs.camera = auto_camera(mesh, Projection::Orthographic, size, size);
     rs.tf = default_transfer_function(mesh);
     const Topology topo = build_topology(mesh);

@@ -12,7 +12,9 @@
 // [10^len_lo, 10^len_hi] unit distances. The transfer function is set by the
 // mesh's scalar range and size, so on these synthetic segments every mesh
 // gives the same times; the mesh argument keeps to how a render sets it up.
-// With ZSWEEP_KERNEL=scalar|avx2 set, only that (capped) width runs.
+// With ZSWEEP_KERNEL=scalar|avx2 set, only that (capped) width runs. The
+// single-precision kernel (scalar-f32, avx2-f32) also prints its largest
+// error against the double integrator over these segments.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -60,26 +62,48 @@ int main(int argc, char** argv) {
     std::vector<KernelWidth> widths = {KernelWidth::Scalar};
     if (light::have_avx2()) widths.push_back(KernelWidth::AVX2);
     if (light::have_avx512()) widths.push_back(KernelWidth::AVX512);
-    for (KernelWidth w : widths) {
-      if (std::getenv("ZSWEEP_KERNEL") && w != best_kernel_width()) continue;  // the capped width only
-      SegmentBatch batch(integ, tf, w);
-      double best = 1e300;
-      for (int r = 0; r < rounds; ++r) {
-        for (PixelRecord& p : px) p.reset();
-        const auto t0 = std::chrono::steady_clock::now();
-        for (size_t i = 0; i < n; ++i) {
-          if (batch.full()) batch.flush(px.data());
-          batch.push(uint32_t(i & 4095), segs[i].s0, segs[i].s1, segs[i].len);
+    for (KernelPrecision prec : {KernelPrecision::Double, KernelPrecision::Single})
+      for (KernelWidth w : widths) {
+        if (std::getenv("ZSWEEP_KERNEL") && w != best_kernel_width()) continue;  // the capped width only
+        if (prec == KernelPrecision::Single && w == KernelWidth::AVX512) continue;  // the AVX2 kernel
+        const bool single = prec == KernelPrecision::Single;
+        SegmentBatch batch(integ, tf, w, prec);
+        double best = 1e300;
+        for (int r = 0; r < rounds; ++r) {
+          for (PixelRecord& p : px) p.reset();
+          const auto t0 = std::chrono::steady_clock::now();
+          for (size_t i = 0; i < n; ++i) {
+            if (batch.full()) batch.flush(px.data());
+            batch.push(uint32_t(i & 4095), segs[i].s0, segs[i].s1, segs[i].len);
+          }
+          batch.flush(px.data());
+          const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+          best = std::min(best, ns / double(n));
         }
-        batch.flush(px.data());
-        const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
-        best = std::min(best, ns / double(n));
+        double sum = 0;
+        for (const PixelRecord& p : px) sum += p.rgb[0] + p.T;
+        const char* name = w == KernelWidth::Scalar ? (single ? "scalar-f32" : "scalar")
+                           : w == KernelWidth::AVX2 ? (single ? "avx2-f32" : "avx2")
+                                                    : "avx512";
+        std::printf("%-10s %6.2f ns per segment (best of %d; checksum %.9g)", name, best, rounds, sum);
+        if (single) {
+          // The single-precision kernel's error against the double integrator, segment by segment.
+          double worst_rgb = 0, worst_T = 0;
+          std::vector<SegmentLight> out;
+          for (size_t i0 = 0; i0 < n; i0 += SegmentBatch::kCapacity) {
+            const size_t i1 = std::min(n, i0 + SegmentBatch::kCapacity);
+            for (size_t i = i0; i < i1; ++i) batch.push(0, segs[i].s0, segs[i].s1, segs[i].len);
+            batch.integrate(&out);
+            for (size_t i = i0; i < i1; ++i) {
+              const SegmentLight ref = integ.integrate(segs[i].s0, segs[i].s1, segs[i].len);
+              for (int k = 0; k < 3; ++k) worst_rgb = std::max(worst_rgb, std::abs(out[i - i0].rgb[k] - ref.rgb[k]));
+              worst_T = std::max(worst_T, std::abs(out[i - i0].T - ref.T));
+            }
+          }
+          std::printf("; largest error against double: rgb %.2e, T %.2e", worst_rgb, worst_T);
+        }
+        std::printf("\n");
       }
-      double sum = 0;
-      for (const PixelRecord& p : px) sum += p.rgb[0] + p.T;
-      std::printf("%-7s %6.2f ns per segment (best of %d; checksum %.9g)\n",
-                  w == KernelWidth::Scalar ? "scalar" : w == KernelWidth::AVX2 ? "avx2" : "avx512", best, rounds, sum);
-    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "zsweep_kernel: %s\n", e.what());
     return 1;

@@ -11,6 +11,7 @@ namespace zs::light {
 
 template <class L>
 struct LanePair {
+  using Scalar = typename L::Scalar;
   static constexpr int kWidth = 2 * L::kWidth;
   struct Mask {
     typename L::Mask a, b;
@@ -42,7 +43,7 @@ struct LanePair {
     L::store_mask(p, m.a);
     L::store_mask(p + L::kWidth, m.b);
   }
-  static LanePair lookup(const double* table, LanePair n, int entries) {
+  static LanePair lookup(const Scalar* table, LanePair n, int entries) {
     return {L::lookup(table, n.a, entries), L::lookup(table, n.b, entries)};
   }
   friend LanePair max(LanePair x, LanePair y) { return {max(x.a, y.a), max(x.b, y.b)}; }

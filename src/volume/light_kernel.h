@@ -9,6 +9,11 @@
 // exp and log are our own (Cody–Waite reduction and Taylor / atanh series,
 // ~1 ulp) because libm's are scalar. Inputs are those of a piece: w = 1 - a
 // in [1e-6, 1], and exp arguments <= 0 (clamped at -700, T < 1e-304).
+//
+// The same code also runs on floats (Lane1f, Lane8f: the single-precision
+// kernel, eight segments per AVX2 vector), with the few constants that
+// depend on the precision in Precision<float> and its own, looser rule
+// tolerance (kSingleTolerance); docs/accuracy.md states its error.
 #pragma once
 
 #include <cmath>
@@ -17,6 +22,22 @@
 #include <cstring>
 
 namespace zs::light {
+
+// What depends on a lane type's precision (V::Scalar).
+template <class T>
+struct Precision;
+template <>
+struct Precision<double> {
+  static constexpr double exp_min = -700.0;   // e^-700 > 0 and normal
+  static constexpr double series_below = 1e-2;  // |q| below which the mean of ln w uses its series
+};
+template <>
+struct Precision<float> {
+  static constexpr double exp_min = -87.0;  // 2^-126 (the smallest normal float) < e^-87
+  // The difference quotient loses ~eps/|q| to cancellation: in float the
+  // series (error < q^8/9) takes over earlier.
+  static constexpr double series_below = 0.1;
+};
 
 // Inputs of one piece, per lane; outputs rgb, T and `ok` (false where the
 // Hermite rule's bound fails: the caller integrates that piece itself).
@@ -32,7 +53,7 @@ struct PieceOut {
 
 template <class V>
 inline V exp_neg(V x) {  // e^x for x <= 0
-  x = max(x, V(-700.0));
+  x = max(x, V(Precision<typename V::Scalar>::exp_min));
   const V n = round_int(x * V(1.4426950408889634));  // x / ln 2
   // ln 2 split so that n·ln2_hi is exact for |n| < 2^11.
   const V r = fmadd(n, V(-1.9082149292705877e-10), fmadd(n, V(-0.6931471803691238), x));
@@ -106,6 +127,8 @@ inline V hermite8_bound(V A, V B, V r) {
 }
 // The rule is used where bound·max|c1 - c0| <= 1e-9·25401600.
 constexpr double kHermite8Tolerance = 1e-9 * 25401600.0;
+// The single-precision kernel's: 1e-7 per piece, about a float's rounding.
+constexpr double kSingleTolerance = 1e-7 * 25401600.0;
 // Every term of the bound is a coefficient times A^i·B^j·r^k with
 // i + 2j + k = 8, so where A <= m, B <= m² and r <= m it is at most the sum
 // of the coefficients times m^8.
@@ -135,7 +158,7 @@ inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out,
   const V d = w1 - w0, q = d / (w0 + w1), q2 = q * q;
   const V series = fmadd(q2, fmadd(q2, fmadd(q2, V(1.0 / 7), V(1.0 / 5)), V(1.0 / 3)), V(0.5) * (L0 + L1));
   const V divided = (w1 * L1 - w0 * L0) / d - one;
-  const V mean = select(abs(q) < V(1e-2), series, divided);
+  const V mean = select(abs(q) < V(Precision<typename V::Scalar>::series_below), series, divided);
   const V T = exp_neg(kappa * mean);
   const V g0 = V(0.0) - kappa * L0, g1 = V(0.0) - kappa * L1;
   const V inv_w01 = one / (w0 * w1), inv_w0 = w1 * inv_w01, inv_w1 = w0 * inv_w01;
@@ -162,17 +185,21 @@ inline void piece_light(const PieceIn<V>& in, double inv_unit, PieceOut<V>* out,
 // rgba at its left end with the slope to its right end (rgba_in's arithmetic:
 // c = lo + t·d, t = (s - bs)·inv_w); the two clamped ends (n = 0, n = nb) hold
 // the end value, with t forced to 0. Every table has at least 8 entries
-// (zero-padded), so an 8-lane kernel can hold one in a register.
-struct TfTables {
-  int nb = 0;                 // breakpoints
-  const double* bs = nullptr; // the nb breakpoints, for counting
-  const double* cut = nullptr;  // entry n >= 1: breakpoint n - 1 (where interval n starts)
-  const double* left = nullptr;
-  const double* inv_w = nullptr;
-  const double* lo[4] = {};
-  const double* d[4] = {};
-  double thin = 0;  // hermite8_thin_limit of the largest colour slope |d[0..2]|
+// (zero-padded), so an 8-lane kernel can hold one in a register. T: the
+// kernel's precision (float tables for the single-precision kernel).
+template <class T>
+struct TfTablesOf {
+  int nb = 0;            // breakpoints
+  const T* bs = nullptr; // the nb breakpoints, for counting
+  const T* cut = nullptr;  // entry n >= 1: breakpoint n - 1 (where interval n starts)
+  const T* left = nullptr;
+  const T* inv_w = nullptr;
+  const T* lo[4] = {};
+  const T* d[4] = {};
+  double tolerance = kHermite8Tolerance;  // the rule's, per segment
+  double thin = 0;  // hermite8_thin_limit of the largest colour slope |d[0..2]| at that tolerance
 };
+using TfTables = TfTablesOf<double>;
 
 // A batch of segments, structure of arrays (n a multiple of the lane count).
 // n0/n1: the breakpoint counts of s0/s1, precomputed by the caller for long
@@ -188,7 +215,7 @@ constexpr int kCountInKernel = 16;
 
 // The breakpoint counts n of segments i.. (light_kernel's table index).
 template <class V>
-inline void breakpoint_counts(const TfTables& tf, const SegmentSoA& q, size_t i, V s0, V s1, V* n0, V* n1) {
+inline void breakpoint_counts(const TfTablesOf<typename V::Scalar>& tf, const SegmentSoA& q, size_t i, V s0, V s1, V* n0, V* n1) {
   if (q.n0) {
     *n0 = V::load(q.n0 + i);
     *n1 = V::load(q.n1 + i);
@@ -208,7 +235,7 @@ inline void breakpoint_counts(const TfTables& tf, const SegmentSoA& q, size_t i,
 // Colour and opacity at scalars sa and sb, both in (or at the ends of)
 // interval n: the piece's two ends.
 template <class V>
-inline void piece_ends(const TfTables& tf, V n, V sa, V sb, PieceIn<V>* in) {
+inline void piece_ends(const TfTablesOf<typename V::Scalar>& tf, V n, V sa, V sb, PieceIn<V>* in) {
   const int entries = tf.nb + 1;
   const V zero(0.0);
   const auto inside = V::mask_and(n >= V(1.0), n <= V(double(tf.nb - 1)));
@@ -229,7 +256,7 @@ inline void piece_ends(const TfTables& tf, V n, V sa, V sb, PieceIn<V>* in) {
 // then piece_light. `ok` is false where the segment crosses a breakpoint
 // (several pieces) or the Hermite bound fails.
 template <class V>
-inline void segment_light(const TfTables& tf, const SegmentSoA& q, size_t i, double inv_unit) {
+inline void segment_light(const TfTablesOf<typename V::Scalar>& tf, const SegmentSoA& q, size_t i, double inv_unit) {
   const V s0 = V::load(q.s0 + i), s1 = V::load(q.s1 + i);
   V n0, n1;
   breakpoint_counts(tf, q, i, s0, s1, &n0, &n1);
@@ -237,7 +264,7 @@ inline void segment_light(const TfTables& tf, const SegmentSoA& q, size_t i, dou
   piece_ends(tf, n0, s0, s1, &in);
   in.len = V::load(q.len + i);
   PieceOut<V> out;
-  piece_light(in, inv_unit, &out, kHermite8Tolerance, tf.thin);
+  piece_light(in, inv_unit, &out, tf.tolerance, tf.thin);
   for (int k = 0; k < 3; ++k) out.rgb[k].store(q.rgb[k] + i);
   out.T.store(q.T + i);
   V::store_mask(q.ok + i, V::mask_and(out.ok, n0 == n1));
@@ -250,7 +277,7 @@ inline void segment_light(const TfTables& tf, const SegmentSoA& q, size_t i, dou
 // within it), composited front to back. `ok` stays false where the ends lie
 // further apart or a piece's bound still fails.
 template <class V>
-inline void segment_light_split(const TfTables& tf, const SegmentSoA& q, size_t i, double inv_unit, int parts) {
+inline void segment_light_split(const TfTablesOf<typename V::Scalar>& tf, const SegmentSoA& q, size_t i, double inv_unit, int parts) {
   const V one(1.0), half(0.5);
   const V s0 = V::load(q.s0 + i), s1 = V::load(q.s1 + i), len = V::load(q.len + i);
   V n0, n1;
@@ -259,7 +286,7 @@ inline void segment_light_split(const TfTables& tf, const SegmentSoA& q, size_t 
   const V cut = select(same, half * (s0 + s1), V::lookup(tf.cut, max(n0, n1), tf.nb + 1));
   const V frac = select(same, half, (cut - s0) / (s1 - s0));
   auto ok = abs(n1 - n0) <= one;
-  const double tol = kHermite8Tolerance / double(2 * parts);
+  const double tol = tf.tolerance / double(2 * parts);
   V rgb[3] = {V(0.0), V(0.0), V(0.0)}, T = one;
   for (int h = 0; h < 2; ++h) {
     const V sa = h == 0 ? s0 : cut, sb = h == 0 ? cut : s1, n = h == 0 ? n0 : n1;
@@ -289,9 +316,13 @@ void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, doub
 void segment_lights_avx512(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts);  // AVX-512F
 bool have_avx2();
 bool have_avx512();
+// The single-precision kernel (rgb and T rounded to float, error in docs/accuracy.md).
+void segment_lights_scalar_f32(const TfTablesOf<float>& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts);
+void segment_lights_avx2_f32(const TfTablesOf<float>& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts);
 
 // One double per lane.
 struct Lane1 {
+  using Scalar = double;
   using Mask = bool;
   double v;
   Lane1() = default;
@@ -340,6 +371,58 @@ struct Lane1 {
     e->v = double(int64_t(u >> 52) - 1023);
     u = (u & ((uint64_t(1) << 52) - 1)) | (uint64_t(1023) << 52);
     std::memcpy(&m->v, &u, 8);
+  }
+};
+
+// One float per lane: the single-precision kernel's reference (Lane8f, in
+// light_kernel_avx2.cpp, gives the same bits). Loads and stores convert
+// from and to the batch's doubles.
+struct Lane1f {
+  using Scalar = float;
+  using Mask = bool;
+  float v;
+  Lane1f() = default;
+  explicit Lane1f(double x) : v(float(x)) {}
+  friend Lane1f operator+(Lane1f a, Lane1f b) { return Lane1f(a.v + b.v); }
+  friend Lane1f operator-(Lane1f a, Lane1f b) { return Lane1f(a.v - b.v); }
+  friend Lane1f operator*(Lane1f a, Lane1f b) { return Lane1f(a.v * b.v); }
+  friend Lane1f operator/(Lane1f a, Lane1f b) { return Lane1f(a.v / b.v); }
+  friend Lane1f fmadd(Lane1f a, Lane1f b, Lane1f c) { return Lane1f(std::fmaf(a.v, b.v, c.v)); }
+  friend Lane1f fnmadd(Lane1f a, Lane1f b, Lane1f c) { return Lane1f(std::fmaf(-a.v, b.v, c.v)); }
+  friend bool operator<(Lane1f a, Lane1f b) { return a.v < b.v; }
+  friend bool operator>(Lane1f a, Lane1f b) { return a.v > b.v; }
+  friend bool operator<=(Lane1f a, Lane1f b) { return a.v <= b.v; }
+  friend bool operator>=(Lane1f a, Lane1f b) { return a.v >= b.v; }
+  friend bool operator==(Lane1f a, Lane1f b) { return a.v == b.v; }
+  friend bool not_less(Lane1f a, Lane1f b) { return !(a.v < b.v); }
+  static Lane1f load(const double* p) { return Lane1f(*p); }
+  void store(double* p) const { *p = double(v); }
+  static bool mask_and(bool a, bool b) { return a && b; }
+  static bool all(bool m) { return m; }
+  static void store_mask(uint8_t* p, bool m) { *p = m; }
+  static Lane1f lookup(const float* table, Lane1f n, int) { return Lane1f(table[size_t(n.v)]); }
+  friend Lane1f max(Lane1f a, Lane1f b) { return Lane1f(a.v > b.v ? a.v : b.v); }
+  friend Lane1f abs(Lane1f a) {
+    uint32_t u;
+    std::memcpy(&u, &a.v, 4);
+    u &= 0x7fffffffu;
+    std::memcpy(&a.v, &u, 4);
+    return a;
+  }
+  friend Lane1f select(bool m, Lane1f a, Lane1f b) { return m ? a : b; }
+  friend Lane1f round_int(Lane1f x) { return Lane1f((x.v + 12582912.0f) - 12582912.0f); }  // 1.5·2^23
+  friend Lane1f pow2_int(Lane1f n) {  // 2^n, n integral in [-126, 127]
+    const uint32_t u = uint32_t(int32_t(n.v) + 127) << 23;
+    float f;
+    std::memcpy(&f, &u, 4);
+    return Lane1f(f);
+  }
+  friend void split_exponent(Lane1f w, Lane1f* e, Lane1f* m) {
+    uint32_t u;
+    std::memcpy(&u, &w.v, 4);
+    e->v = float(int32_t(u >> 23) - 127);
+    u = (u & 0x7fffffu) | (127u << 23);
+    std::memcpy(&m->v, &u, 4);
   }
 };
 

@@ -1,4 +1,5 @@
-// light_kernel.h on four doubles per lane (AVX2). This file alone is
+// light_kernel.h on four doubles per lane (AVX2), and on eight floats (the
+// single-precision kernel). This file alone is
 // compiled with -mavx2 -mfma and includes nothing but the kernel, so no inline
 // function compiled for AVX2 can leak into code that runs without it.
 #include <immintrin.h>
@@ -11,6 +12,7 @@ namespace zs::light {
 namespace {
 
 struct Lane4 {
+  using Scalar = double;
   static constexpr int kWidth = 4;
   using Mask = __m256d;
   __m256d v;
@@ -85,6 +87,71 @@ struct Lane4 {
 
 using Lane4x2 = LanePair<Lane4>;  // 8 segments per step
 
+// Eight floats: the single-precision kernel. The batch holds doubles; loads
+// and stores convert (round to nearest, as Lane1f's do).
+struct Lane8f {
+  using Scalar = float;
+  static constexpr int kWidth = 8;
+  using Mask = __m256;
+  __m256 v;
+  Lane8f() = default;
+  explicit Lane8f(double x) : v(_mm256_set1_ps(float(x))) {}
+  explicit Lane8f(__m256 x) : v(x) {}
+  static Lane8f load(const double* p) {
+    return Lane8f(_mm256_set_m128(_mm256_cvtpd_ps(_mm256_loadu_pd(p + 4)), _mm256_cvtpd_ps(_mm256_loadu_pd(p))));
+  }
+  void store(double* p) const {
+    _mm256_storeu_pd(p, _mm256_cvtps_pd(_mm256_castps256_ps128(v)));
+    _mm256_storeu_pd(p + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(v, 1)));
+  }
+  friend Lane8f operator+(Lane8f a, Lane8f b) { return Lane8f(_mm256_add_ps(a.v, b.v)); }
+  friend Lane8f operator-(Lane8f a, Lane8f b) { return Lane8f(_mm256_sub_ps(a.v, b.v)); }
+  friend Lane8f operator*(Lane8f a, Lane8f b) { return Lane8f(_mm256_mul_ps(a.v, b.v)); }
+  friend Lane8f operator/(Lane8f a, Lane8f b) { return Lane8f(_mm256_div_ps(a.v, b.v)); }
+  friend Lane8f fmadd(Lane8f a, Lane8f b, Lane8f c) { return Lane8f(_mm256_fmadd_ps(a.v, b.v, c.v)); }
+  friend Lane8f fnmadd(Lane8f a, Lane8f b, Lane8f c) { return Lane8f(_mm256_fnmadd_ps(a.v, b.v, c.v)); }
+  friend __m256 operator<(Lane8f a, Lane8f b) { return _mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ); }
+  friend __m256 operator>(Lane8f a, Lane8f b) { return _mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ); }
+  friend __m256 operator<=(Lane8f a, Lane8f b) { return _mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ); }
+  friend __m256 operator>=(Lane8f a, Lane8f b) { return _mm256_cmp_ps(a.v, b.v, _CMP_GE_OQ); }
+  friend __m256 operator==(Lane8f a, Lane8f b) { return _mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ); }
+  friend __m256 not_less(Lane8f a, Lane8f b) { return _mm256_cmp_ps(a.v, b.v, _CMP_NLT_UQ); }
+  static __m256 mask_and(__m256 a, __m256 b) { return _mm256_and_ps(a, b); }
+  static bool all(__m256 m) { return _mm256_movemask_ps(m) == 255; }
+  static void store_mask(uint8_t* p, __m256 m) {
+    // Four lanes' bits to four bytes at a time (as Lane4::store_mask).
+    const uint32_t bits = uint32_t(_mm256_movemask_ps(m));
+    const uint32_t lo = ((bits & 15u) * 0x204081u) & 0x01010101u, hi = ((bits >> 4) * 0x204081u) & 0x01010101u;
+    std::memcpy(p, &lo, 4);
+    std::memcpy(p + 4, &hi, 4);
+  }
+  // table[n] per lane: one permute for tables of at most 8 entries, else a gather.
+  static Lane8f lookup(const float* table, Lane8f n, int entries) {
+    const __m256i i32 = _mm256_cvttps_epi32(n.v);
+    if (entries <= 8) return Lane8f(_mm256_permutevar8x32_ps(_mm256_loadu_ps(table), i32));
+    return Lane8f(_mm256_i32gather_ps(table, i32, 4));
+  }
+  friend Lane8f max(Lane8f a, Lane8f b) { return Lane8f(_mm256_max_ps(a.v, b.v)); }
+  friend Lane8f abs(Lane8f a) {
+    return Lane8f(_mm256_castsi256_ps(_mm256_and_si256(_mm256_castps_si256(a.v), _mm256_set1_epi32(0x7fffffff))));
+  }
+  friend Lane8f select(__m256 m, Lane8f a, Lane8f b) { return Lane8f(_mm256_blendv_ps(b.v, a.v, m)); }
+  friend Lane8f round_int(Lane8f x) {
+    const __m256 c = _mm256_set1_ps(12582912.0f);  // 1.5·2^23
+    return Lane8f(_mm256_sub_ps(_mm256_add_ps(x.v, c), c));
+  }
+  friend Lane8f pow2_int(Lane8f n) {
+    const __m256i k = _mm256_add_epi32(_mm256_cvttps_epi32(n.v), _mm256_set1_epi32(127));
+    return Lane8f(_mm256_castsi256_ps(_mm256_slli_epi32(k, 23)));
+  }
+  friend void split_exponent(Lane8f w, Lane8f* e, Lane8f* m) {
+    const __m256i u = _mm256_castps_si256(w.v);
+    e->v = _mm256_cvtepi32_ps(_mm256_sub_epi32(_mm256_srli_epi32(u, 23), _mm256_set1_epi32(127)));
+    m->v = _mm256_castsi256_ps(
+        _mm256_or_si256(_mm256_and_si256(u, _mm256_set1_epi32(0x7fffff)), _mm256_set1_epi32(0x3f800000)));
+  }
+};
+
 }  // namespace
 
 void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts) {
@@ -93,6 +160,14 @@ void segment_lights_avx2(const TfTables& tf, const SegmentSoA& q, size_t n, doub
     return;
   }
   for (size_t i = 0; i < n; i += 8) segment_light<Lane4x2>(tf, q, i, inv_unit);  // n: a multiple of 16
+}
+
+void segment_lights_avx2_f32(const TfTablesOf<float>& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts) {
+  if (parts > 0) {
+    for (size_t i = 0; i < n; i += 8) segment_light_split<Lane8f>(tf, q, i, inv_unit, parts);
+    return;
+  }
+  for (size_t i = 0; i < n; i += 16) segment_light<LanePair<Lane8f>>(tf, q, i, inv_unit);  // n: a multiple of 16
 }
 
 }  // namespace zs::light

@@ -10,6 +10,7 @@ namespace zs::light {
 namespace {
 
 struct Lane8 {
+  using Scalar = double;
   static constexpr int kWidth = 8;
   using Mask = __mmask8;
   __m512d v;

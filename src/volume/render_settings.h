@@ -24,6 +24,11 @@ struct RenderSettings {
   ScanStrategy scan = ScanStrategy::Span;  // exact and the fastest; bbox gives the same image
   BConvertVariant bconvert_variant = BConvertVariant::Truncate;
   Integrator integrator = Integrator::Exact;
+  // The exact integrator's batched kernel in single precision: twice the
+  // segments per vector, each segment's light within docs/accuracy.md's
+  // bound (not bit-identical to double). Used where segments are batched
+  // (exact, no early termination); elsewhere the double integrator runs.
+  bool single_precision = false;
   // Early termination threshold t in 8-bit levels: stop a pixel once its
   // transmittance is below t/510, which bounds the error by t/2 levels
   // (seed 000's bound). 0 = off.

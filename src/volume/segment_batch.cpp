@@ -16,6 +16,13 @@ void segment_lights_scalar(const TfTables& tf, const SegmentSoA& q, size_t n, do
   }
 }
 
+void segment_lights_scalar_f32(const TfTablesOf<float>& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts) {
+  for (size_t i = 0; i < n; ++i) {
+    if (parts > 0) segment_light_split<Lane1f>(tf, q, i, inv_unit, parts);
+    else segment_light<Lane1f>(tf, q, i, inv_unit);
+  }
+}
+
 bool have_avx2() {
 #if defined(__x86_64__) || defined(__i386__)
   return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
@@ -43,12 +50,14 @@ KernelWidth best_kernel_width() {
   return w;
 }
 
-SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunction& tf, KernelWidth width)
-    : integ_(integ), tf_(tf), width_(width), pixel_(kCapacity), s0_(kCapacity), s1_(kCapacity), len_(kCapacity),
+SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunction& tf, KernelWidth width,
+                           KernelPrecision precision)
+    : integ_(integ), tf_(tf), width_(width), precision_(precision), pixel_(kCapacity), s0_(kCapacity), s1_(kCapacity), len_(kCapacity),
       ok_(kCapacity), retry_(kCapacity), r_s0_(kCapacity), r_s1_(kCapacity), r_len_(kCapacity), r_T_(kCapacity),
       r_ok_(kCapacity), inv_unit_(1.0 / tf.unit_distance()) {
   if (width_ == KernelWidth::AVX512 && !light::have_avx512()) width_ = KernelWidth::AVX2;
   if (width_ == KernelWidth::AVX2 && !light::have_avx2()) width_ = KernelWidth::Scalar;
+  if (precision_ == KernelPrecision::Single && !light::have_avx2()) width_ = KernelWidth::Scalar;
   for (int k = 0; k < 3; ++k) rgb_[k].resize(kCapacity), r_rgb_[k].resize(kCapacity);
   T_.resize(kCapacity);
   const std::vector<double>& bs = tf.breakpoints();
@@ -87,6 +96,22 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
   for (int c = 0; c < 3; ++c)
     for (int n = 0; n <= nb; ++n) max_dc = std::max(max_dc, std::abs(table(6 + c)[n]));
   tf_tables_.thin = light::hermite8_thin_limit(max_dc);
+  // Single precision: the same tables rounded to float, the looser tolerance.
+  tables_f_.assign(tables_.begin(), tables_.end());
+  bs_f_.assign(bs.begin(), bs.end());
+  const float* tf32 = tables_f_.data();
+  auto table_f = [&](int i) { return tf32 + size_t(i) * m; };
+  tf_tables_f_.nb = nb;
+  tf_tables_f_.bs = bs_f_.data();
+  tf_tables_f_.cut = table_f(10);
+  tf_tables_f_.left = table_f(0);
+  tf_tables_f_.inv_w = table_f(1);
+  for (int c = 0; c < 4; ++c) {
+    tf_tables_f_.lo[c] = table_f(2 + c);
+    tf_tables_f_.d[c] = table_f(6 + c);
+  }
+  tf_tables_f_.tolerance = light::kSingleTolerance;
+  tf_tables_f_.thin = light::hermite8_thin_limit(max_dc, light::kSingleTolerance);
 }
 
 void SegmentBatch::run_kernel() {
@@ -130,6 +155,12 @@ void SegmentBatch::run_pass(double* s0, double* s1, double* len, size_t n, doubl
     }
     q.n0 = n0_.data();
     q.n1 = n1_.data();
+  }
+  if (precision_ == KernelPrecision::Single) {
+    // Every AVX-512 CPU has AVX2: eight floats per vector either way.
+    if (width_ != KernelWidth::Scalar) light::segment_lights_avx2_f32(tf_tables_f_, q, n16, inv_unit_, parts);
+    else light::segment_lights_scalar_f32(tf_tables_f_, q, n16, inv_unit_, parts);
+    return;
   }
   switch (width_) {
     case KernelWidth::AVX512: light::segment_lights_avx512(tf_tables_, q, n16, inv_unit_, parts); break;

@@ -22,12 +22,16 @@ namespace zs {
 // (tests compare them; ZSWEEP_KERNEL=scalar|avx2|avx512 caps it too).
 enum class KernelWidth { Scalar = 1, AVX2 = 4, AVX512 = 8 };
 KernelWidth best_kernel_width();
+// Double (the default; every width gives the same bits) or single precision
+// (light_kernel.h's Lane1f / Lane8f: AVX2 or scalar, the same bits).
+enum class KernelPrecision { Double, Single };
 
 class SegmentBatch {
  public:
   static constexpr size_t kCapacity = 512;  // a multiple of 16
   static constexpr int kSplitParts = 2;     // retried segments: 2 halves x 2 pieces
-  SegmentBatch(const SegmentIntegrator& integ, const TransferFunction& tf, KernelWidth width = best_kernel_width());
+  SegmentBatch(const SegmentIntegrator& integ, const TransferFunction& tf, KernelWidth width = best_kernel_width(),
+               KernelPrecision precision = KernelPrecision::Double);
 
   bool full() const { return n_ == kCapacity; }
   void push(uint32_t pixel, double s0, double s1, double len) {
@@ -50,6 +54,7 @@ class SegmentBatch {
   const SegmentIntegrator& integ_;
   const TransferFunction& tf_;
   KernelWidth width_;
+  KernelPrecision precision_;
   size_t n_ = 0;
   std::vector<uint32_t> pixel_;
   std::vector<double> s0_, s1_, len_, n0_, n1_, rgb_[3], T_;
@@ -60,6 +65,9 @@ class SegmentBatch {
   std::vector<uint8_t> r_ok_;
   std::vector<double> tables_;  // TfTables' storage
   light::TfTables tf_tables_;
+  std::vector<float> tables_f_;  // the same, rounded to float, for the single-precision kernel
+  std::vector<float> bs_f_;
+  light::TfTablesOf<float> tf_tables_f_;
   double inv_unit_;
 };
 

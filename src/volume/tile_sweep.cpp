@@ -38,7 +38,10 @@ class TileSweep {
   // Exact integration without early termination is deferred and batched.
   static SegmentBatch* batch_for(const SweepShared& in, TileWorkspace& ws) {
     if (in.rs.integrator != Integrator::Exact || in.rs.early_termination > 0) return nullptr;
-    if (!ws.batch) ws.batch = std::make_unique<SegmentBatch>(in.integ, in.rs.tf);
+    if (!ws.batch)
+      ws.batch = std::make_unique<SegmentBatch>(
+          in.integ, in.rs.tf, best_kernel_width(),
+          in.rs.single_precision ? KernelPrecision::Single : KernelPrecision::Double);
     return ws.batch.get();
   }
   // Records are indexed row by row within the tile (any tile size fits in

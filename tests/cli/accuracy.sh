@@ -26,6 +26,16 @@ out=$("$zsweep" reference "$tmp/nope.json" -o "$tmp/never.exr" 2>&1); rc=$?
 [ $rc -eq 1 ] || fail "missing scene: exit $rc"
 echo "$out" | grep -q "nope.json" || fail "missing scene: message '$out'"
 [ ! -e "$tmp/never.exr" ] || fail "output written for a missing scene"
+# The single-precision kernel: within its bound of the reference; a bad
+# --precision is refused before anything is written.
+"$zsweep" render --width 96 --height 80 --precision single -o "$tmp/s.exr" >/dev/null 2>&1 || fail "render single"
+"$zsweep" compare "$tmp/s.exr" "$tmp/ref.exr" --json > "$tmp/cs.json" || fail "compare single"
+python3 -c 'import json,sys; c=json.load(open(sys.argv[1])); assert c["max_abs"] <= 2e-5 and c["pixels_over_1_255"] == 0, c' \
+  "$tmp/cs.json" || fail "single precision against the reference"
+out=$("$zsweep" render --width 96 --height 80 --precision half -o "$tmp/h.exr" 2>&1); rc=$?
+[ $rc -ne 0 ] || fail "--precision half accepted"
+echo "$out" | grep -q -- "--precision" || fail "--precision half: message '$out'"
+[ ! -e "$tmp/h.exr" ] || fail "output written for a bad --precision"
 
 "$zsweep" bench accuracy default --sizes 64 --csv "$tmp/a.csv" --plots "$tmp/plots" >/dev/null 2>&1 \
   || fail "bench accuracy exited non-zero"
@@ -33,9 +43,10 @@ python3 - "$tmp/a.csv" <<'PY' || fail "accuracy CSV checks"
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 by = {(r["group"], r["setting"]): r for r in rows}
-assert len(rows) == 4 + 7 + 6 + 5 + 3, len(rows)
+assert len(rows) == 5 + 7 + 6 + 5 + 3, len(rows)
 exact = float(by[("integrator", "exact")]["max_abs"])
 assert exact <= 1e-5, exact
+assert float(by[("integrator", "exact-single")]["max_abs"]) <= 2e-5, by[("integrator", "exact-single")]
 for s in ("linear", "preintegrated", "taylor2"):
     assert float(by[("integrator", s)]["max_abs"]) > 10 * exact, s
 assert float(by[("scan", "span")]["max_abs"]) == float(by[("scan", "bbox")]["max_abs"])

@@ -30,7 +30,7 @@ TEST(Scene, ParsesEveryKey) {
     "camera": {"projection": "perspective", "eye": [1,2,3], "target": [0,0,0], "up": [0,0,1],
                "height": 2.5, "fov_y": 45},
     "transfer_function": {"color": [[0,1,0,0],[1,0,0,1]], "opacity": [[0,0],[1,0.5]], "unit_distance": 2},
-    "render": {"scan": "bbox", "integrator": "linear", "early_termination": 4}
+    "render": {"scan": "bbox", "integrator": "linear", "precision": "single", "early_termination": 4}
   })", "s.json", "/base");
   EXPECT_EQ(s.mesh_path, "/base/m.off");
   EXPECT_EQ(s.mesh_options.q_path, "/base/q.bin");
@@ -39,6 +39,7 @@ TEST(Scene, ParsesEveryKey) {
   EXPECT_EQ(s.settings.camera.projection, Projection::Perspective);
   EXPECT_EQ(s.settings.camera.up.z, 1.0);
   EXPECT_EQ(s.settings.integrator, Integrator::Linear);
+  EXPECT_TRUE(s.settings.single_precision);
   EXPECT_EQ(s.settings.early_termination, 4.0);
   EXPECT_DOUBLE_EQ(s.settings.tf.opacity(0.5), 0.25);
   EXPECT_DOUBLE_EQ(s.settings.tf.unit_distance(), 2.0);
@@ -50,6 +51,8 @@ TEST(Scene, RejectsBadInputWithOneLine) {
             "s.json: unknown key 'scene.camrea' (allowed: mesh, image, camera, transfer_function, render)");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"scan": "zigzag"}})"),
             "s.json: render.scan must be \"bbox\", \"bconvert\" or \"span\"");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"precision": "half"}})"),
+            "s.json: render.precision must be \"double\" or \"single\"");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "transfer_function": {"color": [[1,0,0,0],[0,1,1,1]], "opacity": [[0,1]]}})"),
             "s.json: transfer_function.color: points must be strictly increasing in the scalar (point 1 is out of order)");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "transfer_function": {"color": [[0,0,0,0]], "opacity": [[0,1],[0,0.5]]}})"),

@@ -81,7 +81,10 @@ TEST(SegmentIntegrator, LinearPieceMatchesBruteForce) {
 // integrator within its bound, on a short transfer function (looked up from
 // registers) and a long one (counted by the caller, gathered), with segments
 // inside one interval, across breakpoints, and clamped below and above.
-void check_batch_widths(const TransferFunction& tf, double s_lo, double s_hi, uint64_t seed) {
+// The single-precision kernel: its one-lane and AVX2 builds give the same
+// bits, within `bound` of the double integrator (docs/accuracy.md).
+void check_batch_widths(const TransferFunction& tf, double s_lo, double s_hi, uint64_t seed,
+                        KernelPrecision prec = KernelPrecision::Double, double bound = 2e-9) {
   const SegmentIntegrator integ(tf, Integrator::Exact);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u01(0, 1);
@@ -98,10 +101,10 @@ void check_batch_widths(const TransferFunction& tf, double s_lo, double s_hi, ui
   }
   std::vector<KernelWidth> widths = {KernelWidth::Scalar};
   if (light::have_avx2()) widths.push_back(KernelWidth::AVX2);
-  if (light::have_avx512()) widths.push_back(KernelWidth::AVX512);
+  if (light::have_avx512() && prec == KernelPrecision::Double) widths.push_back(KernelWidth::AVX512);
   std::vector<std::vector<SegmentLight>> got(widths.size());
   for (size_t w = 0; w < widths.size(); ++w) {
-    SegmentBatch batch(integ, tf, widths[w]);
+    SegmentBatch batch(integ, tf, widths[w], prec);
     std::vector<SegmentLight> part;
     for (size_t i = 0; i < segs.size(); ++i) {
       batch.push(uint32_t(i), segs[i].s0, segs[i].s1, segs[i].len);
@@ -123,9 +126,10 @@ void check_batch_widths(const TransferFunction& tf, double s_lo, double s_hi, ui
     worst = std::max(worst, std::abs(l.T - got[0][i].T));
     for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(l.rgb[k] - got[0][i].rgb[k]));
   }
-  std::printf("%zu breakpoints, %zu widths: max difference from the scalar integrator %.2e\n",
-              tf.breakpoints().size(), widths.size(), worst);
-  EXPECT_LE(worst, 2e-9);
+  std::printf("%zu breakpoints, %zu widths, %s: max difference from the scalar integrator %.2e\n",
+              tf.breakpoints().size(), widths.size(), prec == KernelPrecision::Single ? "single" : "double", worst);
+  EXPECT_LE(worst, bound);
+  if (prec == KernelPrecision::Single) EXPECT_GT(worst, 2e-9) << "floats should show (is the kernel double?)";
 }
 
 TEST(SegmentIntegrator, BatchKernelsMatchBitForBit) {
@@ -143,6 +147,20 @@ TEST(SegmentIntegrator, BatchKernelsMatchBitForBit) {
   for (int i = 0; i < 9; ++i) op9.push_back({i / 8.0, 0.1 + 0.1 * i});
   const TransferFunction mid_tf({{0.0, 0.1, 0.2, 0.6}, {1.0, 0.9, 0.2, 0.1}}, op9, 0.3);
   check_batch_widths(mid_tf, -0.1, 1.1, 13);
+}
+
+TEST(SegmentIntegrator, SinglePrecisionKernelsMatchBitForBitWithinTheirBound) {
+  const TransferFunction short_tf({{0.0, 0.23, 0.30, 0.75}, {0.5, 0.87, 0.87, 0.87}, {1.0, 0.71, 0.02, 0.15}},
+                                  {{0.0, 0.0}, {1.0, 0.6}}, 0.3);
+  check_batch_widths(short_tf, -0.2, 1.2, 11, KernelPrecision::Single, 1e-6);
+  std::vector<OpacityPoint> op;
+  for (int i = 0; i < 40; ++i) op.push_back({i / 39.0, 0.45 + 0.4 * std::sin(i * 0.7)});
+  const TransferFunction long_tf({{0.0, 0.1, 0.2, 0.6}, {1.0, 0.9, 0.2, 0.1}}, op, 0.3);
+  check_batch_widths(long_tf, -0.1, 1.1, 12, KernelPrecision::Single, 1e-6);
+  std::vector<OpacityPoint> op9;
+  for (int i = 0; i < 9; ++i) op9.push_back({i / 8.0, 0.1 + 0.1 * i});
+  const TransferFunction mid_tf({{0.0, 0.1, 0.2, 0.6}, {1.0, 0.9, 0.2, 0.1}}, op9, 0.3);
+  check_batch_widths(mid_tf, -0.1, 1.1, 13, KernelPrecision::Single, 1e-6);
 }
 
 

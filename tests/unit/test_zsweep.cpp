@@ -24,12 +24,13 @@ Image render(const TetMesh& m, const RenderSettings& rs, RenderStats* st = nullp
 
 // Constant density over a convex box: alpha = 1 - exp(-tau·L) per pixel,
 // colour = c·alpha (premultiplied), L the chord of the pixel's ray.
-void check_constant_box(Projection proj, uint32_t W, uint32_t H) {
+void check_constant_box(Projection proj, uint32_t W, uint32_t H, bool single = false) {
   const glm::dvec3 lo{-1.0, -0.7, -0.5}, hi{1.0, 0.7, 0.5};
   const TetMesh m = box_mesh({6, 5, 4}, lo, hi, [](const glm::dvec3&) { return 1.0; });
   const double a = 0.3, unit = 0.8;
   const double c[3] = {0.2, 0.5, 0.9};
   RenderSettings rs = settings(W, H, proj, TransferFunction({{0, c[0], c[1], c[2]}}, {{0, a}}, unit));
+  rs.single_precision = single;
   RenderStats st;
   const Image img = render(m, rs, &st);
   const double tau = -std::log(1 - a) / unit;
@@ -59,6 +60,10 @@ TEST(ZSweep, ConstantDensityBoxOrthographicMatchesClosedForm) {
 TEST(ZSweep, ConstantDensityBoxPerspectiveMatchesClosedForm) {
   check_constant_box(Projection::Perspective, 64, 96);
 }
+TEST(ZSweep, ConstantDensityBoxSinglePrecisionMatchesClosedForm) {
+  check_constant_box(Projection::Orthographic, 96, 64, true);
+  check_constant_box(Projection::Perspective, 64, 96, true);
+}
 
 TEST(ZSweep, LinearScalarMatchesQuadratureWithExactIntegrator) {
   const glm::dvec3 lo{-1.0, -0.8, -0.6}, hi{1.0, 0.8, 0.6};
@@ -87,6 +92,31 @@ TEST(ZSweep, LinearScalarMatchesQuadratureWithExactIntegrator) {
   EXPECT_LE(err[0], 1e-4);
   EXPECT_GT(err[1], 10 * err[0]) << "the linear integrator ignores TF breakpoints inside a cell";
   EXPECT_GT(err[2], 10 * err[0]);
+}
+
+// The single-precision kernel on the same scene: within its bound
+// (docs/accuracy.md: ~1e-6 per segment, a few segments per pixel) of the
+// double kernel's image, which is not the same image bit for bit.
+TEST(ZSweep, SinglePrecisionStaysWithinItsBoundOfDouble) {
+  const glm::dvec3 lo{-1.0, -0.8, -0.6}, hi{1.0, 0.8, 0.6};
+  auto field = [](const glm::dvec3& p) { return 0.5 + 0.22 * p.x + 0.15 * p.y - 0.2 * p.z; };
+  const TetMesh m = box_mesh({3, 3, 3}, lo, hi, field);
+  TransferFunction tf({{0.0, 0.1, 0.1, 0.9}, {0.35, 0.1, 0.9, 0.3}, {0.55, 0.9, 0.9, 0.1}, {1.0, 0.9, 0.1, 0.1}},
+                      {{0.0, 0.0}, {0.3, 0.05}, {0.45, 0.9}, {0.55, 0.1}, {0.7, 0.6}, {1.0, 0.2}}, 0.5);
+  RenderSettings rs = settings(96, 72, Projection::Orthographic, tf);
+  RenderStats sd, ss;
+  const Image dbl = render(m, rs, &sd);
+  rs.single_precision = true;
+  const Image sgl = render(m, rs, &ss);
+  double worst = 0;
+  for (uint32_t j = 0; j < 72; ++j)
+    for (uint32_t i = 0; i < 96; ++i)
+      for (int k = 0; k < 4; ++k) worst = std::max(worst, double(std::abs(dbl.at(i, j)[k] - sgl.at(i, j)[k])));
+  std::printf("single against double: max difference %.2e over %llu segments\n", worst,
+              (unsigned long long)ss.segments);
+  EXPECT_EQ(sd.segments, ss.segments);  // the same sweep; only the light differs
+  EXPECT_GT(worst, 0.0) << "the single-precision kernel did not run";
+  EXPECT_LE(worst, 1e-5);
 }
 
 // Two boxes one behind the other (gap between), and a box with a cavity:
