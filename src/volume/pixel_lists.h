@@ -91,6 +91,19 @@ class PixelLists {
     }
     return insert_sorted(px, z, s, kind);
   }
+  // insert() returning the pixel's pending count after it (0: not inserted),
+  // which the sweep's list-length statistic needs without reloading the record.
+  uint32_t insert_counted(PixelRecord& px, float z, float s, uint32_t kind) {
+    const int n = px.n;
+    if (n < kInline && (n == 0 || px.z[n - 1] < z)) {
+      px.z[n] = z;
+      px.s[n] = s;
+      px.kinds = uint16_t(px.kinds | (kind << (2 * n)));
+      px.n = uint16_t(n + 1);
+      return uint32_t(n + 1);
+    }
+    return insert_sorted(px, z, s, kind) ? px.pending() : 0;
+  }
   void add_live(size_t inserted) {
     live_ += inserted;
     if (live_ > peak_) peak_ = live_;

@@ -273,9 +273,13 @@ class TileSweep {
         const uint32_t p = row + uint32_t(i);
         PixelRecord& px = px0[p];
         if (px.z[0] < z_sweep) comp_.composite_batched(px, p, lists, z_sweep, 1.0);
-        if (!lists.insert(px, z, s, kind)) insert_over_budget(px, z, s, kind, z_sweep, fc.inserted);
+        uint32_t len = lists.insert_counted(px, z, s, kind);
+        if (!len) {
+          insert_over_budget(px, z, s, kind, z_sweep, fc.inserted);
+          len = px.pending();
+        }
         if (px.active != 1) activate(px, p);
-        fc.max_len = std::max<uint32_t>(fc.max_len, px.pending());
+        fc.max_len = std::max(fc.max_len, len);
       }
       fc.inserted += uint64_t(r.x1 - r.x0 + 1);
     }
