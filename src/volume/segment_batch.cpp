@@ -97,8 +97,20 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
     for (int n = 0; n <= nb; ++n) max_dc = std::max(max_dc, std::abs(table(6 + c)[n]));
   tf_tables_.thin = light::hermite8_thin_limit(max_dc);
   // Single precision: the same tables rounded to float, the looser tolerance.
+  // Scalars and breakpoints are taken relative to the middle of the transfer
+  // function's range (in double, then rounded), so a range far from zero
+  // (300–310 K, say) keeps a float's resolution of its width, not of |s|.
+  s_ref_ = 0.5 * (bs.front() + bs.back());
   tables_f_.assign(tables_.begin(), tables_.end());
-  bs_f_.assign(bs.begin(), bs.end());
+  for (int n = 0; n <= nb; ++n) {
+    const int k = n - 1;
+    if (k >= 0 && k + 1 < nb) tables_f_[size_t(n)] = float(bs[size_t(k)] - s_ref_);  // left
+    if (n >= 1) tables_f_[10 * m + size_t(n)] = float(bs[size_t(n - 1)] - s_ref_);   // cut
+  }
+  bs_f_.resize(bs.size());
+  for (size_t j = 0; j < bs.size(); ++j) bs_f_[j] = float(bs[j] - s_ref_);
+  sh0_.resize(kCapacity);
+  sh1_.resize(kCapacity);
   const float* tf32 = tables_f_.data();
   auto table_f = [&](int i) { return tf32 + size_t(i) * m; };
   tf_tables_f_.nb = nb;
@@ -157,6 +169,9 @@ void SegmentBatch::run_pass(double* s0, double* s1, double* len, size_t n, doubl
     q.n1 = n1_.data();
   }
   if (precision_ == KernelPrecision::Single) {
+    for (size_t i = 0; i < n16; ++i) sh0_[i] = s0[i] - s_ref_, sh1_[i] = s1[i] - s_ref_;
+    q.s0 = sh0_.data();
+    q.s1 = sh1_.data();
     // Every AVX-512 CPU has AVX2: eight floats per vector either way.
     if (width_ != KernelWidth::Scalar) light::segment_lights_avx2_f32(tf_tables_f_, q, n16, inv_unit_, parts);
     else light::segment_lights_scalar_f32(tf_tables_f_, q, n16, inv_unit_, parts);

@@ -67,6 +67,8 @@ class SegmentBatch {
   light::TfTables tf_tables_;
   std::vector<float> tables_f_;  // the same, rounded to float, for the single-precision kernel
   std::vector<float> bs_f_;
+  double s_ref_ = 0;                // the single kernel's scalar origin
+  std::vector<double> sh0_, sh1_;   // the batch's scalars relative to it
   light::TfTablesOf<float> tf_tables_f_;
   double inv_unit_;
 };

@@ -161,6 +161,13 @@ TEST(SegmentIntegrator, SinglePrecisionKernelsMatchBitForBitWithinTheirBound) {
   for (int i = 0; i < 9; ++i) op9.push_back({i / 8.0, 0.1 + 0.1 * i});
   const TransferFunction mid_tf({{0.0, 0.1, 0.2, 0.6}, {1.0, 0.9, 0.2, 0.1}}, op9, 0.3);
   check_batch_widths(mid_tf, -0.1, 1.1, 13, KernelPrecision::Single, 1e-6);
+  // A scalar range far from zero (a float's spacing at 1000 is 6e-5, a
+  // tenth of a percent of this range): the kernel's scalars are relative to
+  // the range's middle, so the bound holds here too.
+  const TransferFunction offset_tf(
+      {{1000.0, 0.23, 0.30, 0.75}, {1000.05, 0.87, 0.87, 0.87}, {1000.1, 0.71, 0.02, 0.15}},
+      {{1000.0, 0.0}, {1000.02, 0.3}, {1000.1, 0.6}}, 0.3);
+  check_batch_widths(offset_tf, 999.98, 1000.12, 14, KernelPrecision::Single, 1e-6);
 }
 
 
