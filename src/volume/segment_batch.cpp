@@ -132,15 +132,22 @@ void SegmentBatch::run_kernel() {
   // Segments the one-piece rule could not take (a breakpoint inside, or a
   // thick piece): again, in pieces, with the vector kernel; what still fails
   // goes to SegmentIntegrator in flush().
+  // Nearly every segment is ok: skip eight flags at a time (ok_ holds
+  // kCapacity entries, a multiple of 8; those past n_ are never read).
   size_t m = 0;
-  for (size_t i = 0; i < n_; ++i)
-    if (!ok_[i]) {
-      retry_[m] = uint32_t(i);
-      r_s0_[m] = s0_[i];
-      r_s1_[m] = s1_[i];
-      r_len_[m] = len_[i];
-      ++m;
-    }
+  for (size_t i0 = 0; i0 < n_; i0 += 8) {
+    uint64_t flags;
+    std::memcpy(&flags, ok_.data() + i0, 8);
+    if (flags == 0x0101010101010101ull) continue;
+    for (size_t i = i0; i < std::min(n_, i0 + 8); ++i)
+      if (!ok_[i]) {
+        retry_[m] = uint32_t(i);
+        r_s0_[m] = s0_[i];
+        r_s1_[m] = s1_[i];
+        r_len_[m] = len_[i];
+        ++m;
+      }
+  }
   if (m == 0) return;
   run_pass(r_s0_.data(), r_s1_.data(), r_len_.data(), m, r_rgb_[0].data(), r_rgb_[1].data(), r_rgb_[2].data(),
            r_T_.data(), r_ok_.data(), kSplitParts);
