@@ -21,6 +21,7 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "util/atomic_file.h"
+#include "volume/segment_batch.h"
 #include "volume/zsweep_renderer.h"
 
 namespace zs {
@@ -71,6 +72,12 @@ void write_stats(const std::string& path, const RenderStats& S, const Scene& sce
       {"row_end_misses", {S.row_end_misses[0], S.row_end_misses[1], S.row_end_misses[2], S.row_end_misses[3]}},
       {"face_to_bbox_area_ratio", S.bbox_area > 0 ? S.face_area / S.bbox_area : 0.0},
       {"integrator", to_string(scene.settings.integrator)},
+      {"precision", scene.settings.single_precision ? "single" : "double"},
+      // The batched kernel, where segments are batched (exact, no early termination).
+      {"kernel", scene.settings.integrator == Integrator::Exact && scene.settings.early_termination <= 0
+                     ? kernel_name(best_kernel_width(), scene.settings.single_precision ? KernelPrecision::Single
+                                                                                        : KernelPrecision::Double)
+                     : "none"},
       {"tiles", S.tiles},
       {"tile_size", S.tile_size},
   };

@@ -50,6 +50,13 @@ KernelWidth best_kernel_width() {
   return w;
 }
 
+const char* kernel_name(KernelWidth width, KernelPrecision precision) {
+  if (width == KernelWidth::AVX512 && !light::have_avx512()) width = KernelWidth::AVX2;
+  if (width != KernelWidth::Scalar && !light::have_avx2()) width = KernelWidth::Scalar;
+  if (precision == KernelPrecision::Single) return width == KernelWidth::Scalar ? "scalar-f32" : "avx2-f32";
+  return width == KernelWidth::AVX512 ? "avx512" : width == KernelWidth::AVX2 ? "avx2" : "scalar";
+}
+
 SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunction& tf, KernelWidth width,
                            KernelPrecision precision)
     : integ_(integ), tf_(tf), width_(width), precision_(precision), pixel_(kCapacity), s0_(kCapacity), s1_(kCapacity), len_(kCapacity),

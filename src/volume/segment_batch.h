@@ -25,6 +25,9 @@ KernelWidth best_kernel_width();
 // Double (the default; every width gives the same bits) or single precision
 // (light_kernel.h's Lane1f / Lane8f: AVX2 or scalar, the same bits).
 enum class KernelPrecision { Double, Single };
+// The kernel a batch with these settings runs on this CPU: "avx512", "avx2",
+// "scalar", "avx2-f32" or "scalar-f32" (the stats name it).
+const char* kernel_name(KernelWidth width, KernelPrecision precision);
 
 class SegmentBatch {
  public:

@@ -28,7 +28,10 @@ echo "$out" | grep -q "nope.json" || fail "missing scene: message '$out'"
 [ ! -e "$tmp/never.exr" ] || fail "output written for a missing scene"
 # The single-precision kernel: within its bound of the reference; a bad
 # --precision is refused before anything is written.
-"$zsweep" render --width 96 --height 80 --precision single -o "$tmp/s.exr" >/dev/null 2>&1 || fail "render single"
+"$zsweep" render --width 96 --height 80 --precision single -o "$tmp/s.exr" --stats "$tmp/s.json" >/dev/null 2>&1 \
+  || fail "render single"
+python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["precision"] == "single" and j["kernel"].endswith("-f32"), j' \
+  "$tmp/s.json" || fail "stats do not name the single kernel"
 "$zsweep" compare "$tmp/s.exr" "$tmp/ref.exr" --json > "$tmp/cs.json" || fail "compare single"
 python3 -c 'import json,sys; c=json.load(open(sys.argv[1])); assert c["max_abs"] <= 2e-5 and c["pixels_over_1_255"] == 0, c' \
   "$tmp/cs.json" || fail "single precision against the reference"
