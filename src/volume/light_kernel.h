@@ -337,110 +337,70 @@ bool have_avx512();
 void segment_lights_scalar_f32(const TfTablesOf<float>& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts);
 void segment_lights_avx2_f32(const TfTablesOf<float>& tf, const SegmentSoA& q, size_t n, double inv_unit, int parts);
 
-// One double per lane.
-struct Lane1 {
-  using Scalar = double;
-  using Mask = bool;
-  double v;
-  Lane1() = default;
-  explicit Lane1(double x) : v(x) {}
-  friend Lane1 operator+(Lane1 a, Lane1 b) { return Lane1(a.v + b.v); }
-  friend Lane1 operator-(Lane1 a, Lane1 b) { return Lane1(a.v - b.v); }
-  friend Lane1 operator*(Lane1 a, Lane1 b) { return Lane1(a.v * b.v); }
-  friend Lane1 operator/(Lane1 a, Lane1 b) { return Lane1(a.v / b.v); }
-  // a·b + c and c - a·b, rounded once (std::fma is exact in every build).
-  friend Lane1 fmadd(Lane1 a, Lane1 b, Lane1 c) { return Lane1(std::fma(a.v, b.v, c.v)); }
-  friend Lane1 fnmadd(Lane1 a, Lane1 b, Lane1 c) { return Lane1(std::fma(-a.v, b.v, c.v)); }
-  friend bool operator<(Lane1 a, Lane1 b) { return a.v < b.v; }
-  friend bool operator>(Lane1 a, Lane1 b) { return a.v > b.v; }
-  friend bool operator<=(Lane1 a, Lane1 b) { return a.v <= b.v; }
-  friend bool operator>=(Lane1 a, Lane1 b) { return a.v >= b.v; }
-  friend bool operator==(Lane1 a, Lane1 b) { return a.v == b.v; }
-  friend bool not_less(Lane1 a, Lane1 b) { return !(a.v < b.v); }
-  static Lane1 load(const double* p) { return Lane1(*p); }
-  void store(double* p) const { *p = v; }
-  static bool mask_and(bool a, bool b) { return a && b; }
-  static bool all(bool m) { return m; }
-  static void store_mask(uint8_t* p, bool m) { *p = m; }
-  static Lane1 lookup(const double* table, Lane1 n, int) { return Lane1(table[size_t(n.v)]); }
-  // max/min as the AVX instructions define them (second operand on NaN).
-  friend Lane1 max(Lane1 a, Lane1 b) { return Lane1(a.v > b.v ? a.v : b.v); }
-  friend Lane1 abs(Lane1 a) {
-    uint64_t u;
-    std::memcpy(&u, &a.v, 8);
-    u &= ~(uint64_t(1) << 63);
-    std::memcpy(&a.v, &u, 8);
-    return a;
-  }
-  friend Lane1 select(bool m, Lane1 a, Lane1 b) { return m ? a : b; }
-  // Round to the nearest integer (ties to even) by the 1.5·2^52 trick, as
-  // the vector version does.
-  friend Lane1 round_int(Lane1 x) { return Lane1((x.v + 6755399441055744.0) - 6755399441055744.0); }
-  friend Lane1 pow2_int(Lane1 n) {  // 2^n, n integral in [-1022, 1023]
-    const uint64_t u = uint64_t(int64_t(n.v) + 1023) << 52;
-    double d;
-    std::memcpy(&d, &u, 8);
-    return Lane1(d);
-  }
-  friend void split_exponent(Lane1 w, Lane1* e, Lane1* m) {
-    uint64_t u;
-    std::memcpy(&u, &w.v, 8);
-    e->v = double(int64_t(u >> 52) - 1023);
-    u = (u & ((uint64_t(1) << 52) - 1)) | (uint64_t(1023) << 52);
-    std::memcpy(&m->v, &u, 8);
-  }
-};
-
-// One float per lane: the single-precision kernel's reference (Lane8f, in
-// light_kernel_avx2.cpp, gives the same bits). Loads and stores convert
+// One value per lane: Lane1 (double) is the reference every vector width
+// matches bit for bit, Lane1f (float) the single-precision kernel's (Lane8f
+// in light_kernel_avx2.cpp gives the same bits). Loads and stores convert
 // from and to the batch's doubles.
-struct Lane1f {
-  using Scalar = float;
+template <class T>
+struct LaneOne {
+  using Scalar = T;
   using Mask = bool;
-  float v;
-  Lane1f() = default;
-  explicit Lane1f(double x) : v(float(x)) {}
-  friend Lane1f operator+(Lane1f a, Lane1f b) { return Lane1f(a.v + b.v); }
-  friend Lane1f operator-(Lane1f a, Lane1f b) { return Lane1f(a.v - b.v); }
-  friend Lane1f operator*(Lane1f a, Lane1f b) { return Lane1f(a.v * b.v); }
-  friend Lane1f operator/(Lane1f a, Lane1f b) { return Lane1f(a.v / b.v); }
-  friend Lane1f fmadd(Lane1f a, Lane1f b, Lane1f c) { return Lane1f(std::fmaf(a.v, b.v, c.v)); }
-  friend Lane1f fnmadd(Lane1f a, Lane1f b, Lane1f c) { return Lane1f(std::fmaf(-a.v, b.v, c.v)); }
-  friend bool operator<(Lane1f a, Lane1f b) { return a.v < b.v; }
-  friend bool operator>(Lane1f a, Lane1f b) { return a.v > b.v; }
-  friend bool operator<=(Lane1f a, Lane1f b) { return a.v <= b.v; }
-  friend bool operator>=(Lane1f a, Lane1f b) { return a.v >= b.v; }
-  friend bool operator==(Lane1f a, Lane1f b) { return a.v == b.v; }
-  friend bool not_less(Lane1f a, Lane1f b) { return !(a.v < b.v); }
-  static Lane1f load(const double* p) { return Lane1f(*p); }
+  using Bits = std::conditional_t<sizeof(T) == 8, uint64_t, uint32_t>;
+  static constexpr int kMantissa = sizeof(T) == 8 ? 52 : 23;  // fraction bits
+  static constexpr int kBias = sizeof(T) == 8 ? 1023 : 127;
+  T v;
+  LaneOne() = default;
+  explicit LaneOne(double x) : v(T(x)) {}
+  friend LaneOne operator+(LaneOne a, LaneOne b) { return LaneOne(a.v + b.v); }
+  friend LaneOne operator-(LaneOne a, LaneOne b) { return LaneOne(a.v - b.v); }
+  friend LaneOne operator*(LaneOne a, LaneOne b) { return LaneOne(a.v * b.v); }
+  friend LaneOne operator/(LaneOne a, LaneOne b) { return LaneOne(a.v / b.v); }
+  // a·b + c and c - a·b, rounded once (std::fma is exact in every build).
+  friend LaneOne fmadd(LaneOne a, LaneOne b, LaneOne c) { return LaneOne(std::fma(a.v, b.v, c.v)); }
+  friend LaneOne fnmadd(LaneOne a, LaneOne b, LaneOne c) { return LaneOne(std::fma(-a.v, b.v, c.v)); }
+  friend bool operator<(LaneOne a, LaneOne b) { return a.v < b.v; }
+  friend bool operator>(LaneOne a, LaneOne b) { return a.v > b.v; }
+  friend bool operator<=(LaneOne a, LaneOne b) { return a.v <= b.v; }
+  friend bool operator>=(LaneOne a, LaneOne b) { return a.v >= b.v; }
+  friend bool operator==(LaneOne a, LaneOne b) { return a.v == b.v; }
+  friend bool not_less(LaneOne a, LaneOne b) { return !(a.v < b.v); }
+  static LaneOne load(const double* p) { return LaneOne(*p); }
   void store(double* p) const { *p = double(v); }
   static bool mask_and(bool a, bool b) { return a && b; }
   static bool all(bool m) { return m; }
   static void store_mask(uint8_t* p, bool m) { *p = m; }
-  static Lane1f lookup(const float* table, Lane1f n, int) { return Lane1f(table[size_t(n.v)]); }
-  friend Lane1f max(Lane1f a, Lane1f b) { return Lane1f(a.v > b.v ? a.v : b.v); }
-  friend Lane1f abs(Lane1f a) {
-    uint32_t u;
-    std::memcpy(&u, &a.v, 4);
-    u &= 0x7fffffffu;
-    std::memcpy(&a.v, &u, 4);
+  static LaneOne lookup(const T* table, LaneOne n, int) { return LaneOne(table[size_t(n.v)]); }
+  // max as the AVX instructions define it (second operand on NaN).
+  friend LaneOne max(LaneOne a, LaneOne b) { return LaneOne(a.v > b.v ? a.v : b.v); }
+  friend LaneOne abs(LaneOne a) {
+    Bits u;
+    std::memcpy(&u, &a.v, sizeof(T));
+    u &= ~(Bits(1) << (8 * sizeof(T) - 1));
+    std::memcpy(&a.v, &u, sizeof(T));
     return a;
   }
-  friend Lane1f select(bool m, Lane1f a, Lane1f b) { return m ? a : b; }
-  friend Lane1f round_int(Lane1f x) { return Lane1f((x.v + 12582912.0f) - 12582912.0f); }  // 1.5·2^23
-  friend Lane1f pow2_int(Lane1f n) {  // 2^n, n integral in [-126, 127]
-    const uint32_t u = uint32_t(int32_t(n.v) + 127) << 23;
-    float f;
-    std::memcpy(&f, &u, 4);
-    return Lane1f(f);
+  friend LaneOne select(bool m, LaneOne a, LaneOne b) { return m ? a : b; }
+  // Round to the nearest integer (ties to even) by the 1.5·2^mantissa trick,
+  // as the vector versions do.
+  friend LaneOne round_int(LaneOne x) {
+    const T c = T(1.5) * T(Bits(1) << kMantissa);
+    return LaneOne((x.v + c) - c);
   }
-  friend void split_exponent(Lane1f w, Lane1f* e, Lane1f* m) {
-    uint32_t u;
-    std::memcpy(&u, &w.v, 4);
-    e->v = float(int32_t(u >> 23) - 127);
-    u = (u & 0x7fffffu) | (127u << 23);
-    std::memcpy(&m->v, &u, 4);
+  friend LaneOne pow2_int(LaneOne n) {  // 2^n, n integral in the normal exponent range
+    const Bits u = Bits(int64_t(n.v) + kBias) << kMantissa;
+    T d;
+    std::memcpy(&d, &u, sizeof(T));
+    return LaneOne(d);
+  }
+  friend void split_exponent(LaneOne w, LaneOne* e, LaneOne* m) {
+    Bits u;
+    std::memcpy(&u, &w.v, sizeof(T));
+    e->v = T(int64_t(u >> kMantissa) - kBias);
+    u = (u & ((Bits(1) << kMantissa) - 1)) | (Bits(kBias) << kMantissa);
+    std::memcpy(&m->v, &u, sizeof(T));
   }
 };
+using Lane1 = LaneOne<double>;
+using Lane1f = LaneOne<float>;
 
 }  // namespace zs::light

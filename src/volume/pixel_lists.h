@@ -79,22 +79,12 @@ class PixelLists {
   // False when the fragment needs an overflow slot and the pool is at its
   // bound (the caller composites and retries). The caller counts successful
   // inserts into add_live() (once per face, off the per-fragment path).
-  bool insert(PixelRecord& px, float z, float s, uint32_t kind) {
-    const int n = px.n;
-    // The sweep's common case: deeper than everything listed, and room inline.
-    if (n < kInline && (n == 0 || px.z[n - 1] < z)) {
-      px.z[n] = z;
-      px.s[n] = s;
-      px.kinds = uint16_t(px.kinds | (kind << (2 * n)));
-      px.n = uint16_t(n + 1);
-      return true;
-    }
-    return insert_sorted(px, z, s, kind);
-  }
+  bool insert(PixelRecord& px, float z, float s, uint32_t kind) { return insert_counted(px, z, s, kind) != 0; }
   // insert() returning the pixel's pending count after it (0: not inserted),
   // which the sweep's list-length statistic needs without reloading the record.
   uint32_t insert_counted(PixelRecord& px, float z, float s, uint32_t kind) {
     const int n = px.n;
+    // The sweep's common case: deeper than everything listed, and room inline.
     if (n < kInline && (n == 0 || px.z[n - 1] < z)) {
       px.z[n] = z;
       px.s[n] = s;

@@ -41,6 +41,26 @@ bool have_avx512() {
 
 }  // namespace light
 
+namespace {
+
+// Points tf into 11 tables of m entries each, laid out as the constructor
+// fills them: 0 left, 1 inv_w, 2..5 lo, 6..9 d, 10 cut.
+template <class T>
+void point_tables(light::TfTablesOf<T>* tf, int nb, const T* bs, const T* t, size_t m) {
+  auto table = [&](int i) { return t + size_t(i) * m; };
+  tf->nb = nb;
+  tf->bs = bs;
+  tf->cut = table(10);
+  tf->left = table(0);
+  tf->inv_w = table(1);
+  for (int c = 0; c < 4; ++c) {
+    tf->lo[c] = table(2 + c);
+    tf->d[c] = table(6 + c);
+  }
+}
+
+}  // namespace
+
 KernelWidth best_kernel_width() {
   KernelWidth w = light::have_avx512() ? KernelWidth::AVX512 : light::have_avx2() ? KernelWidth::AVX2 : KernelWidth::Scalar;
   if (const char* cap = std::getenv("ZSWEEP_KERNEL")) {
@@ -90,15 +110,7 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
       table(6 + c)[n] = inside ? tf.rgba_at_breakpoint(k + 1)[size_t(c)] - lo[size_t(c)] : 0.0;
     }
   }
-  tf_tables_.nb = nb;
-  tf_tables_.bs = bs.data();
-  tf_tables_.cut = table(10);
-  tf_tables_.left = table(0);
-  tf_tables_.inv_w = table(1);
-  for (int c = 0; c < 4; ++c) {
-    tf_tables_.lo[c] = table(2 + c);
-    tf_tables_.d[c] = table(6 + c);
-  }
+  point_tables(&tf_tables_, nb, bs.data(), t, m);
   double max_dc = 0;  // a one-interval piece's |c1 - c0| is at most its interval's |d|
   for (int c = 0; c < 3; ++c)
     for (int n = 0; n <= nb; ++n) max_dc = std::max(max_dc, std::abs(table(6 + c)[n]));
@@ -118,17 +130,7 @@ SegmentBatch::SegmentBatch(const SegmentIntegrator& integ, const TransferFunctio
   for (size_t j = 0; j < bs.size(); ++j) bs_f_[j] = float(bs[j] - s_ref_);
   sh0_.resize(kCapacity);
   sh1_.resize(kCapacity);
-  const float* tf32 = tables_f_.data();
-  auto table_f = [&](int i) { return tf32 + size_t(i) * m; };
-  tf_tables_f_.nb = nb;
-  tf_tables_f_.bs = bs_f_.data();
-  tf_tables_f_.cut = table_f(10);
-  tf_tables_f_.left = table_f(0);
-  tf_tables_f_.inv_w = table_f(1);
-  for (int c = 0; c < 4; ++c) {
-    tf_tables_f_.lo[c] = table_f(2 + c);
-    tf_tables_f_.d[c] = table_f(6 + c);
-  }
+  point_tables(&tf_tables_f_, nb, bs_f_.data(), tables_f_.data(), m);
   tf_tables_f_.tolerance = light::kSingleTolerance;
   tf_tables_f_.thin = light::hermite8_thin_limit(max_dc, light::kSingleTolerance);
 }
