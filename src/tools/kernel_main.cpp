@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
       g.s1 = std::clamp(g.s0 + 0.01 * (hi - lo) * (u01(rng) - 0.5), lo, hi);
       g.len = unit * std::pow(10.0, lg_lo + (lg_hi - lg_lo) * u01(rng));
     }
-    std::vector<PixelRecord> px(4096);
+    std::vector<PixelLight> px(4096);
     std::printf("%zu segments, %zu transfer-function breakpoints\n", n, tf.breakpoints().size());
     std::vector<KernelWidth> widths = {KernelWidth::Scalar};
     if (light::have_avx2()) widths.push_back(KernelWidth::AVX2);
@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
         SegmentBatch batch(integ, tf, w, prec);
         double best = 1e300;
         for (int r = 0; r < rounds; ++r) {
-          for (PixelRecord& p : px) p.reset();
+          for (PixelLight& p : px) p.reset();
           const auto t0 = std::chrono::steady_clock::now();
           for (size_t i = 0; i < n; ++i) {
             if (batch.full()) batch.flush(px.data());
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
           best = std::min(best, ns / double(n));
         }
         double sum = 0;
-        for (const PixelRecord& p : px) sum += p.rgb[0] + p.T;
+        for (const PixelLight& p : px) sum += p.rgb[0] + p.T;
         const char* name = w == KernelWidth::Scalar ? (single ? "scalar-f32" : "scalar")
                            : w == KernelWidth::AVX2 ? (single ? "avx2-f32" : "avx2")
                                                     : "avx512";

@@ -23,13 +23,14 @@ void Compositor::composite(PixelRecord& px, PixelLists& lists, float z_limit, in
     if (px.inside > 0 && z > px.last_z) {
       const SegmentLight seg = integ_.integrate(px.last_s, integ_.end(px.last_s), s, integ_.end(s),
                                                 double(z - px.last_z) * len_factor);
-      const double T = px.T;
-      px.rgb[0] += T * seg.rgb[0];
-      px.rgb[1] += T * seg.rgb[1];
-      px.rgb[2] += T * seg.rgb[2];
-      px.T = T * seg.T;
+      PixelLight& l = lights_[&px - records_];
+      const double T = l.T;
+      l.rgb[0] += T * seg.rgb[0];
+      l.rgb[1] += T * seg.rgb[1];
+      l.rgb[2] += T * seg.rgb[2];
+      l.T = T * seg.T;
       ++segments_;
-      if (px.T < et_) {
+      if (l.T < et_) {
         px.done = 1;
         ++terminated_;
         lists.clear(px);

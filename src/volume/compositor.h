@@ -20,15 +20,17 @@ namespace zs {
 
 class Compositor {
  public:
-  // et_transmittance: stop a pixel once its transmittance is below this (0 =
-  // never). With a batch (exact integrator, no early termination: nothing
-  // reads a pixel's colour before the tile ends), segments are queued there
-  // and composited into records[pixel] in order when it fills or on flush().
-  Compositor(const View& view, const SegmentIntegrator& integ, double et_transmittance,
-             SegmentBatch* batch = nullptr, PixelRecord* records = nullptr)
-      : view_(view), integ_(integ), et_(et_transmittance), batch_(batch), records_(records) {}
+  // records / lights: the tile's pixel records and their accumulators, both
+  // indexed by pixel. et_transmittance: stop a pixel once its transmittance
+  // is below this (0 = never). With a batch (exact integrator, no early
+  // termination: nothing reads a pixel's colour before the tile ends),
+  // segments are queued there and composited into lights[pixel] in order
+  // when it fills or on flush().
+  Compositor(const View& view, const SegmentIntegrator& integ, double et_transmittance, SegmentBatch* batch,
+             PixelRecord* records, PixelLight* lights)
+      : view_(view), integ_(integ), et_(et_transmittance), batch_(batch), records_(records), lights_(lights) {}
   void flush() {
-    if (batch_) batch_->flush(records_);
+    if (batch_) batch_->flush(lights_);
   }
 
   // Composites the fragments of the pixel at image coordinates (X, Y) with
@@ -45,7 +47,7 @@ class Compositor {
       for (; i < n && px.z[i] < z_limit; ++i) {
         const float z = px.z[i];
         if (px.inside > 0 && z > px.last_z) {
-          if (batch_->full()) batch_->flush(records_);
+          if (batch_->full()) batch_->flush(lights_);
           batch_->push(pixel, px.last_s, px.s[i], double(z - px.last_z) * len_factor);
           ++segments_;
         }
@@ -79,6 +81,7 @@ class Compositor {
   double et_;
   SegmentBatch* batch_;
   PixelRecord* records_;
+  PixelLight* lights_;
   uint64_t segments_ = 0, terminated_ = 0;
 };
 

@@ -7,11 +7,13 @@
 // allocation per fragment; a free list hands out the most recently freed,
 // cache-hot slot first), and move up as the front ones are composited.
 //
-// A record is two cache lines: the first holds everything the sweep touches
-// per fragment (the inline fragments, the overflow list ends, the inside count
-// and the previous fragment), the second the compositing accumulators, which
-// only SegmentBatch::flush and the compositor write. A 64² tile's records are
-// 512 KiB and stay in L2.
+// A record is one cache line: everything the sweep touches per fragment (the
+// inline fragments, the overflow list ends, the inside count and the previous
+// fragment). The compositing accumulators, which only SegmentBatch::flush and
+// the compositor write, live apart in a PixelLight array (32 bytes, two
+// pixels per line): a 64² tile's records and lights are 384 KiB, inside a
+// 512 KiB L2, where records with their accumulators in a second line were
+// 512 KiB and were evicted on every batch's flush.
 #pragma once
 
 #include <cmath>
@@ -51,9 +53,6 @@ struct alignas(64) PixelRecord {
   uint16_t ovf;           // fragments in the overflow list, saturating at 65535
   float last_z, last_s;   // the previous fragment: where the next segment starts
   uint32_t head, tail;    // overflow list, kNil when empty
-  // Line 2: premultiplied colour and transmittance so far, front to back.
-  alignas(64) double rgb[3];
-  double T;
   uint32_t kind(int i) const { return (kinds >> (2 * i)) & 3u; }
   // Pending fragments in all (a saturated overflow count stays so until empty).
   uint32_t pending() const { return uint32_t(n) + ovf; }
@@ -65,11 +64,20 @@ struct alignas(64) PixelRecord {
     ovf = 0;
     last_z = last_s = 0;
     head = tail = kNil;
+  }
+};
+static_assert(sizeof(PixelRecord) == 64, "one cache line per pixel");
+
+// A pixel's premultiplied colour and transmittance so far, front to back.
+struct PixelLight {
+  double rgb[3];
+  double T;
+  void reset() {
     rgb[0] = rgb[1] = rgb[2] = 0;
     T = 1;
   }
 };
-static_assert(sizeof(PixelRecord) == 128, "two cache lines per pixel");
+static_assert(sizeof(PixelLight) == 32, "two pixels per cache line");
 
 class PixelLists {
  public:

@@ -200,7 +200,7 @@ void SegmentBatch::run_pass(double* s0, double* s1, double* len, size_t n, doubl
   }
 }
 
-void SegmentBatch::flush(PixelRecord* px) {
+void SegmentBatch::flush(PixelLight* light) {
   if (n_ == 0) return;
   run_kernel();
   const double *R = rgb_[0].data(), *G = rgb_[1].data(), *B = rgb_[2].data(), *TT = T_.data();
@@ -212,7 +212,7 @@ void SegmentBatch::flush(PixelRecord* px) {
       const SegmentLight l = integ_.integrate(s0_[i], s1_[i], len_[i]);
       r = l.rgb[0], g = l.rgb[1], b = l.rgb[2], T = l.T;
     }
-    PixelRecord& p = px[pix[i]];
+    PixelLight& p = light[pix[i]];
     const double Tp = p.T;
     p.rgb[0] += Tp * r;
     p.rgb[1] += Tp * g;

@@ -44,8 +44,8 @@ class SegmentBatch {
     len_[n_] = len;
     ++n_;
   }
-  // Integrates the queued segments and composites them into px[pixel].
-  void flush(PixelRecord* px);
+  // Integrates the queued segments and composites them into light[pixel].
+  void flush(PixelLight* light);
   // The same segments' light without compositing (tests): rgb and T per segment.
   void integrate(std::vector<SegmentLight>* out);
 

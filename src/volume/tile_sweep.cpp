@@ -27,9 +27,10 @@ class TileSweep {
  public:
   TileSweep(const SweepShared& in, const Viewport& vp, uint64_t max_fragments, TileWorkspace& ws, RenderStats& S)
       : in_(in), rs_(in.rs), vp_(vp), vw_(uint32_t(vp.x1 - vp.x0)), ws_(ws), S_(S),
+        npix_(size_t(vw_) * uint32_t(vp.y1 - vp.y0)), records_(prepare(ws, npix_)),
         comp_(in.view, in.integ, rs_.early_termination > 0 ? rs_.early_termination / 510.0 : 0.0,
-              batch_for(in, ws), prepare(ws, size_t(vw_) * uint32_t(vp.y1 - vp.y0))),
-        npix_(size_t(vw_) * uint32_t(vp.y1 - vp.y0)), timed_(rs_.phase_times) {
+              batch_for(in, ws), records_, ws.light.data()),  // after prepare() has sized ws.light
+        timed_(rs_.phase_times) {
     ws.active.clear();
     ws.touched.clear();
     ws.lists.reset(max_fragments);
@@ -49,10 +50,13 @@ class TileSweep {
   static PixelRecord* prepare(TileWorkspace& ws, size_t npix) {
     if (ws.px.size() < npix) {
       ws.px.resize(npix);
+      ws.light.resize(npix);
       ws.px_clean = false;
     }
-    if (!ws.px_clean)
+    if (!ws.px_clean) {
       for (PixelRecord& p : ws.px) p.reset();
+      for (PixelLight& l : ws.light) l.reset();
+    }
     ws.px_clean = false;  // until finish() has reset what this tile touches
     return ws.px.data();
   }
@@ -308,13 +312,14 @@ class TileSweep {
     for (size_t p = 0; p < npix_; ++p)
       for (int k = 0; k < 4; ++k) out[p * 4 + k] = b[k];
     for (uint32_t p : ws_.touched) {
-      PixelRecord& px = ws_.px[p];
-      const double T = px.T;
+      PixelLight& l = ws_.light[p];
+      const double T = l.T;
       float* o = &out[size_t(p) * 4];
-      for (int k = 0; k < 3; ++k) o[k] = float(px.rgb[k] + T * bg[k]);
+      for (int k = 0; k < 3; ++k) o[k] = float(l.rgb[k] + T * bg[k]);
       o[3] = float((1.0 - T) + T * bg[3]);
       if (T < 1.0) ++S_.rendered_pixels;
-      px.reset();
+      ws_.px[p].reset();
+      l.reset();
     }
     ws_.px_clean = true;
   }
@@ -325,8 +330,9 @@ class TileSweep {
   uint32_t vw_;
   TileWorkspace& ws_;
   RenderStats& S_;
-  Compositor comp_;
   size_t npix_;  // this tile's pixels (the first npix_ records)
+  PixelRecord* records_;
+  Compositor comp_;
   bool timed_;
   uint64_t fragments_ = 0, max_len_ = 0;  // this tile's counts (kept out of S_ in the hot loop)
 };

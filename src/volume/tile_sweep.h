@@ -46,7 +46,8 @@ struct alignas(128) TileWorkspace {
   // Pixel records, all in their reset state between tiles (only the ones a
   // tile touched are reset after it: on a sparse image most are never touched).
   std::vector<PixelRecord> px;
-  bool px_clean = false;          // false: reset every record before the next tile
+  std::vector<PixelLight> light;  // their accumulators, by the same index
+  bool px_clean = false;          // false: reset every record and light before the next tile
   std::vector<uint32_t> active;   // pixels whose lists may be non-empty
   std::vector<uint32_t> touched;  // pixels that received a fragment this tile
   PixelLists lists;

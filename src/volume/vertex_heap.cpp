@@ -44,11 +44,17 @@ VertexHeap::Entry VertexHeap::pop() {
   a_.pop_back();
   const size_t n = a_.size();
   if (n == 0) return entry(top);
-  size_t i = 0;
-  for (size_t l = 1; l < n; l = 2 * i + 1) {
-    const size_t c = (l + 1 < n && a_[l + 1] < a_[l]) ? l + 1 : l;
+  // The smaller child is chosen without a branch: with keys in random order
+  // that branch is a coin toss.
+  size_t i = 0, l = 1;
+  for (; l + 1 < n; l = 2 * i + 1) {
+    const size_t c = l + size_t(a_[l + 1] < a_[l]);
     a_[i] = a_[c];
     i = c;
+  }
+  if (l < n) {  // a last child without a sibling
+    a_[i] = a_[l];
+    i = l;
   }
   while (i > 0) {
     const size_t p = (i - 1) / 2;

@@ -111,9 +111,9 @@ uint64_t default_memory_budget();
 uint64_t peak_rss_bytes();
 
 // Per-pixel bytes of a tile in flight (pixel record, with its first
-// kInline fragments, plus its output), the bytes the plan charges per vertex,
+// kInline fragments, its accumulators and its output), the bytes the plan charges per vertex,
 // face and bin entry; overflow fragments are 16 bytes.
-constexpr uint64_t kTilePixelBytes = 128 + 16;
+constexpr uint64_t kTilePixelBytes = 64 + 32 + 16;
 uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces);
 
 // How a render fits its budget: shared state (vertices, faces, bins, sink),
