@@ -11,9 +11,10 @@
 // inline fragments, the overflow list ends, the inside count and the previous
 // fragment). The compositing accumulators, which only SegmentBatch::flush and
 // the compositor write, live apart in a PixelLight array (32 bytes, two
-// pixels per line): a 64² tile's records and lights are 384 KiB, inside a
-// 512 KiB L2, where records with their accumulators in a second line were
-// 512 KiB and were evicted on every batch's flush.
+// pixels per line): a 64² tile's records and lights are 384 KiB, where
+// records with their accumulators in a second line were 512 KiB, a whole
+// 512 KiB L2, and the batch's apply loop (the second line's only reader)
+// was a hot spot.
 #pragma once
 
 #include <cmath>
