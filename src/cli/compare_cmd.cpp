@@ -1,4 +1,4 @@
-// `zsweep compare A.exr B.exr [--diff DIFF.png] [--scale S] [--json]`
+// `zsweep compare A.exr B.exr [--diff DIFF.png] [--scale S] [--rgb] [--json]`
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -16,7 +16,7 @@ void add_compare_command(CLI::App& app) {
   struct Args {
     std::string a, b, diff;
     double scale = 4.0 / 255.0;
-    bool json = false;
+    bool json = false, rgb = false;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("compare", "Compare two images: max abs, RMSE, PSNR, pixels off by > 1/255");
@@ -24,16 +24,19 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("b", a->b, "Second image")->required();
   cmd->add_option("--diff", a->diff, "Write a false-colour difference image");
   cmd->add_option("--scale", a->scale, "Difference shown as full red in --diff")->capture_default_str();
+  cmd->add_flag("--rgb", a->rgb,
+                "Compare colour only, not alpha (for an image without alpha, such as VTK's screen grabs over "
+                "black, against a premultiplied render)");
   cmd->add_flag("--json", a->json, "Print the numbers as JSON");
   cmd->callback([a] {
     const Image A = read_image(a->a), B = read_image(a->b);
     ImageDiff d;
     try {
-      d = compare_images(A, B);
+      d = compare_images(A, B, a->rgb ? 3 : 4);
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(a->a + " vs " + a->b + ": " + e.what());
     }
-    if (!a->diff.empty()) write_image(a->diff, difference_image(A, B, a->scale));
+    if (!a->diff.empty()) write_image(a->diff, difference_image(A, B, a->scale, a->rgb ? 3 : 4));
     if (a->json) {
       nlohmann::json j = {{"max_abs", d.max_abs},
                           {"rmse", d.rmse},

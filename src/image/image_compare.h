@@ -14,10 +14,12 @@ struct ImageDiff {
   uint32_t worst_x = 0, worst_y = 0;
 };
 
-// Throws std::invalid_argument when the sizes differ.
-ImageDiff compare_images(const Image& a, const Image& b);
+// Throws std::invalid_argument when the sizes differ. channels: 4 compares
+// RGBA, 3 only RGB (for an image without alpha, such as a screen grab over
+// black, against a premultiplied render).
+ImageDiff compare_images(const Image& a, const Image& b, int channels = 4);
 // False colour: black = equal, through blue and green to red at `scale`
-// (per-pixel max channel difference); opaque.
-Image difference_image(const Image& a, const Image& b, double scale);
+// (per-pixel max difference over the first `channels`); opaque.
+Image difference_image(const Image& a, const Image& b, double scale, int channels = 4);
 
 }  // namespace zs

@@ -131,6 +131,26 @@ TEST(ImageCompare, NumbersAndDifferenceImage) {
   EXPECT_THROW(compare_images(a, Image(2, 2)), std::invalid_argument);
 }
 
+// --rgb: alpha differs (an image without alpha reads as opaque), colour counts.
+TEST(ImageCompare, ColourOnlyIgnoresAlpha) {
+  Image a(2, 2), b(2, 2);
+  for (size_t k = 0; k < a.rgba.size(); ++k) a.rgba[k] = b.rgba[k] = 0.25f;
+  for (size_t p = 0; p < 4; ++p) b.rgba[p * 4 + 3] = 1.0f;
+  b.at(1, 0)[1] = 0.25f + 0.02f;
+  const ImageDiff all = compare_images(a, b);
+  EXPECT_NEAR(all.max_abs, 0.75, 1e-6);
+  EXPECT_EQ(all.pixels_over_1_255, 4u);
+  const ImageDiff rgb = compare_images(a, b, 3);
+  EXPECT_NEAR(rgb.max_abs, 0.02, 1e-6);
+  EXPECT_EQ(rgb.worst_x, 1u);
+  EXPECT_EQ(rgb.pixels_over_1_255, 1u);
+  EXPECT_NEAR(rgb.rmse, std::sqrt(0.02 * 0.02 / 12.0), 1e-6);
+  const Image f = difference_image(a, b, 0.02, 3);
+  EXPECT_FLOAT_EQ(f.at(1, 0)[0], 1.f);
+  EXPECT_FLOAT_EQ(f.at(0, 1)[0] + f.at(0, 1)[1] + f.at(0, 1)[2], 0.f);
+  EXPECT_THROW(compare_images(a, b, 2), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace zs
 
