@@ -36,6 +36,19 @@ MESHES = {
 }
 
 
+# VTK's ray caster's integrators. With one scalar and independent components
+# (our scenes) it picks `preintegration` itself: a table of (front scalar,
+# back scalar, length) built once per transfer function, looked up per
+# segment. `linear` is VTK's own integrator that is "correct" for piecewise
+# linear transfer functions, `partial` Moreland and Angel's partial
+# pre-integration (a table of its psi function; VTK 9.1's crashes on post).
+VTK_INTEGRATORS = {
+    "preintegration": vtk.vtkUnstructuredGridPreIntegration,
+    "partial": vtk.vtkUnstructuredGridPartialPreIntegration,
+    "linear": vtk.vtkUnstructuredGridLinearRayIntegrator,
+}
+
+
 def run(cmd, **kw):
     return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw)
 
@@ -94,7 +107,7 @@ class VtkRenderer:
     """One VTK mapper set up on the mesh, camera and transfer function; its
     first frame (which builds VTK's caches) is rendered and discarded."""
 
-    def __init__(self, vtu, scene, mapper_kind, vtk_threads=1):
+    def __init__(self, vtu, scene, mapper_kind, vtk_threads=1, integrator=None):
         reader = vtk.vtkXMLUnstructuredGridReader()
         reader.SetFileName(vtu)
         reader.Update()
@@ -119,6 +132,8 @@ class VtkRenderer:
             # VTK's ray caster runs one thread per core by default; the targets
             # compare one thread with one thread.
             mapper.SetNumberOfThreads(vtk_threads)
+            if integrator:
+                mapper.SetRayIntegrator(VTK_INTEGRATORS[integrator]())
         # Full resolution every frame: no sample-distance adjustment from the
         # previous frame's time.
         mapper.SetAutoAdjustSampleDistances(0)
@@ -162,7 +177,7 @@ class VtkRenderer:
         writer.Write()
 
 
-def main():
+def parser():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sizes", default="512,1024")
     ap.add_argument("--meshes", default="spx,blunt,post")
@@ -181,12 +196,26 @@ def main():
     ap.add_argument("--vtk-zsweep-all-rounds-below", type=float, default=10.0,
                     help="seconds: where VTK's ZSweep frame takes less, it is timed in every round and its "
                          "best counts, as ours and the ray caster's do (spx)")
+    ap.add_argument("--vtk-integrators", default="default",
+                    help="integrators to time VTK's ray caster with: default (its own pick, which is "
+                         "preintegration here), and any of " + ", ".join(VTK_INTEGRATORS) +
+                         " (each gets its own columns)")
     ap.add_argument("--precisions", default="double,single",
                     help="the exact integrator's kernel: double (bit-identical on every CPU), single, or both")
     ap.add_argument("--csv", default=os.path.join(ROOT, "docs", "benchmarks.csv"))
     ap.add_argument("--images", default=os.path.join(ROOT, "build", "bench-vs-vtk"))
     ap.add_argument("--no-doc", action="store_true", help="do not update docs/benchmarks.md")
+    return ap
+
+
+def main():
+    ap = parser()
     a = ap.parse_args()
+    integrators = a.vtk_integrators.split(",")
+    for i in integrators:
+        if i != "default" and i not in VTK_INTEGRATORS:
+            ap.error(f"--vtk-integrators: unknown integrator '{i}' (default, {', '.join(VTK_INTEGRATORS)})")
+    extra = [i for i in integrators if i != "default"]
     os.makedirs(a.images, exist_ok=True)
     rows = []
     work = tempfile.mkdtemp(prefix="zsweep-bench-")
@@ -206,22 +235,28 @@ def main():
             if os.path.exists(base + "-reference.exr"):
                 os.remove(base + "-reference.exr")  # a previous run's, perhaps of another scene
             mappers = [m for m in ("zsweep", "raycast") if m in a.mappers.split(",")]
+            if "raycast" in mappers and "default" not in integrators:
+                mappers.remove("raycast")
             # VTK's ZSweep mapper takes minutes per frame on large meshes
             # (hours at 1024² of post): left out above a work limit.
             if "zsweep" in mappers and info["tets"] * size * size > a.vtk_zsweep_max_work:
                 mappers.remove("zsweep")
                 print(f"{name} {size}²: VTK ZSweep not run (tets x pixels above --vtk-zsweep-max-work)", flush=True)
             vtks = {m: VtkRenderer(vtu, scene, m) for m in mappers}
+            if "raycast" in a.mappers.split(","):
+                for i in extra:
+                    vtks["raycast-" + i] = VtkRenderer(vtu, scene, "raycast", integrator=i)
+            timed = list(vtks)
             # Interleaved rounds (this machine's speed drifts by tens of per
             # cent within minutes): best of each, so every ratio is measured
             # in one stretch of time.
             nan = float("nan")
-            best = {**{p: nan for p in precs}, **{m: nan for m in mappers}}
+            best = {**{p: nan for p in precs}, **{m: nan for m in timed}}
             for rnd in range(a.repeat):
                 for p in precs:
                     t = time_zsweep(scenes[p], base + f"-zsweep-{p}.exr", 1)
                     best[p] = t if best[p] != best[p] else min(best[p], t)
-                for m in mappers:
+                for m in timed:
                     # Every renderer gets the same best-of-rounds where
                     # that is affordable: a single VTK frame against our
                     # best of several would favour us.
@@ -229,7 +264,7 @@ def main():
                         continue
                     t = vtks[m].frame()
                     best[m] = t if best[m] != best[m] else min(best[m], t)
-            for m in mappers:
+            for m in timed:
                 vtks[m].save(base + f"-vtk-{m}.png")
             vtks.clear()
             vz = best.get("zsweep", nan)
@@ -241,10 +276,16 @@ def main():
                        "vtk_zsweep_s": vz, "vtk_raycast_s": vr,
                        "speedup_vs_vtk_zsweep": vz / ours, "speedup_vs_vtk_raycast": vr / ours,
                        "max_abs_vs_reference": err}
+                for i in extra:
+                    t = best.get("raycast-" + i, nan)
+                    row[f"vtk_raycast_{i}_s"] = t
+                    row[f"speedup_vs_vtk_raycast_{i}"] = t / ours
                 rows.append(row)
                 print(f"{name:6s} {size:5d}² {p:6s}  zsweep {ours:7.3f} s (max abs vs reference {err:.2g})   "
                       f"VTK ZSweep {vz:7.3f} s ({vz / ours:5.1f}x)   "
-                      f"VTK ray cast {vr:7.3f} s ({vr / ours:5.2f}x)", flush=True)
+                      f"VTK ray cast {vr:7.3f} s ({vr / ours:5.2f}x)" +
+                      "".join(f"   VTK ray cast, {i} {row[f'vtk_raycast_{i}_s']:7.3f} s "
+                              f"({row[f'speedup_vs_vtk_raycast_{i}']:5.2f}x)" for i in extra), flush=True)
     write_csv(a.csv, rows)
     if not a.no_doc:
         update_doc(rows, a)
@@ -252,17 +293,25 @@ def main():
 
 def update_doc(rows, a):
     path = os.path.join(ROOT, "docs", "benchmarks.md")
+    extra = [i for i in a.vtk_integrators.split(",") if i != "default"]
+    # The options that change what is timed, where they are not the defaults.
+    defaults = parser()
+    opts = "".join(f" --{k.replace('_', '-')} {getattr(a, k):g}" if isinstance(getattr(a, k), float)
+                   else f" --{k.replace('_', '-')} {getattr(a, k)}"
+                   for k in ("mappers", "vtk_zsweep_max_work", "vtk_integrators", "precisions")
+                   if getattr(a, k) != defaults.get_default(k))
     lines = [
         f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores, {cpu_vector_isa()}), one thread each "
         f"(VTK's ray caster set to one thread), `exact` integrator ({a.precisions.replace(',', ' and ')} kernel), `{a.scan}` scan, "
-        f"`scripts/bench-vs-vtk --sizes {a.sizes} --meshes {a.meshes} --repeat {a.repeat}`: best of {a.repeat} "
+        f"`scripts/bench-vs-vtk --sizes {a.sizes} --meshes {a.meshes} --repeat {a.repeat}{opts}`: best of {a.repeat} "
         f"interleaved rounds of one steady-state frame each (VTK's ZSweep mapper: every round where its frame "
         f"takes under {a.vtk_zsweep_all_rounds_below:g} s, else {a.vtk_zsweep_rounds}, "
         f"and only where tets × pixels ≤ {a.vtk_zsweep_max_work:.1e}; \"–\" where not run). Targets: ≥ 25× VTK's "
         f"ZSweep mapper, ≥ 3× VTK's ray caster, image within 1/255 of our reference.",
         "",
-        "| mesh | tets | size | kernel | zsweep (s) | vs reference | VTK ZSweep (s) | ratio | ≥ 25× | VTK ray cast (s) | ratio | ≥ 3× |",
-        "| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | :---: | ---: | ---: | :---: |",
+        "| mesh | tets | size | kernel | zsweep (s) | vs reference | VTK ZSweep (s) | ratio | ≥ 25× | VTK ray cast (s) | ratio | ≥ 3× |"
+        + "".join(f" VTK ray cast, {i} (s) | ratio |" for i in extra),
+        "| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | :---: | ---: | ---: | :---: |" + " ---: | ---: |" * len(extra),
     ]
     def mark(ratio, target):
         return "–" if ratio != ratio else ("yes" if ratio >= target else "**no**")
@@ -275,7 +324,9 @@ def update_doc(rows, a):
                      f"{r['max_abs_vs_reference']:.1e} | {sec(r['vtk_zsweep_s'])} | "
                      f"{ratio(r['speedup_vs_vtk_zsweep'], 1)} | {mark(r['speedup_vs_vtk_zsweep'], 25)} | "
                      f"{sec(r['vtk_raycast_s'])} | {ratio(r['speedup_vs_vtk_raycast'], 2)} | "
-                     f"{mark(r['speedup_vs_vtk_raycast'], 3)} |")
+                     f"{mark(r['speedup_vs_vtk_raycast'], 3)} |" +
+                     "".join(f" {sec(r[f'vtk_raycast_{i}_s'])} | {ratio(r[f'speedup_vs_vtk_raycast_{i}'], 2)} |"
+                             for i in extra))
     replace_block(path, "bench-vs-vtk", lines, "## zsweep vs VTK's unstructured-grid mappers")
 
 
