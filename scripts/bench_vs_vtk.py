@@ -235,17 +235,18 @@ def main():
             if os.path.exists(base + "-reference.exr"):
                 os.remove(base + "-reference.exr")  # a previous run's, perhaps of another scene
             mappers = [m for m in ("zsweep", "raycast") if m in a.mappers.split(",")]
-            if "raycast" in mappers and "default" not in integrators:
-                mappers.remove("raycast")
             # VTK's ZSweep mapper takes minutes per frame on large meshes
             # (hours at 1024² of post): left out above a work limit.
             if "zsweep" in mappers and info["tets"] * size * size > a.vtk_zsweep_max_work:
                 mappers.remove("zsweep")
                 print(f"{name} {size}²: VTK ZSweep not run (tets x pixels above --vtk-zsweep-max-work)", flush=True)
-            vtks = {m: VtkRenderer(vtu, scene, m) for m in mappers}
-            if "raycast" in a.mappers.split(","):
-                for i in extra:
-                    vtks["raycast-" + i] = VtkRenderer(vtu, scene, "raycast", integrator=i)
+            # One renderer per VTK mapper, and per integrator for the ray caster
+            # ("raycast" is its default pick, "raycast-NAME" another).
+            vtks = {}
+            for m in mappers:
+                for i in (integrators if m == "raycast" else ["default"]):
+                    key = m if i == "default" else f"{m}-{i}"
+                    vtks[key] = VtkRenderer(vtu, scene, m, integrator=None if i == "default" else i)
             timed = list(vtks)
             # Interleaved rounds (this machine's speed drifts by tens of per
             # cent within minutes): best of each, so every ratio is measured
