@@ -18,7 +18,7 @@
 #include "image/tile_writer.h"
 #include "mesh/topology.h"
 #include "mesh/validate.h"
-#include "scene/camera.h"
+#include "view/camera.h"
 #include "scene/scene.h"
 #include "util/atomic_file.h"
 #include "volume/segment_batch.h"

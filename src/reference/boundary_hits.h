@@ -16,7 +16,7 @@
 #include "mesh/tet_mesh.h"
 #include "mesh/topology.h"
 #include "reference/tet_walk.h"
-#include "scene/camera.h"
+#include "view/camera.h"
 
 namespace zs {
 

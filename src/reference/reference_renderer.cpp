@@ -14,7 +14,7 @@
 
 #include "reference/boundary_hits.h"
 #include "reference/tet_walk.h"
-#include "scene/camera.h"
+#include "view/camera.h"
 #include "util/bytes_str.h"
 #include "volume/segment_integrator.h"
 #include "volume/zsweep_renderer.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "util/text_lines.h"
 #include "spheres/vdw_radii.h"
 
@@ -49,10 +49,10 @@ double coordinate(const Record& r, const std::string& name, size_t first, char a
   const std::string_view field = trim(columns(r.line, first, 8));
   const std::string cols = " (columns " + std::to_string(first + 1) + "-" + std::to_string(first + 8) + ")";
   const auto v = parse_number(field);
-  if (!v) throw MeshError(name, r.line_no, std::string(r.kind) + ": " + axis + " coordinate " + quoted_token(field) +
+  if (!v) throw FileError(name, r.line_no, std::string(r.kind) + ": " + axis + " coordinate " + quoted_token(field) +
                                                " is not a number" + cols);
   if (!std::isfinite(*v))
-    throw MeshError(name, r.line_no, std::string(r.kind) + ": non-finite " + axis + " coordinate " +
+    throw FileError(name, r.line_no, std::string(r.kind) + ": non-finite " + axis + " coordinate " +
                                          quoted_token(field) + cols);
   return *v;
 }
@@ -73,7 +73,7 @@ SphereSet parse_pdb(std::string_view text, const std::string& name) {
     if (!atom && !hetatm) continue;
     const Record r{line, atom ? "ATOM" : "HETATM", line_no};
     if (line.size() < 54)
-      throw MeshError(name, line_no, std::string(r.kind) + " record too short: " + std::to_string(line.size()) +
+      throw FileError(name, line_no, std::string(r.kind) + " record too short: " + std::to_string(line.size()) +
                                          " columns, coordinates need columns 31-54");
     const glm::dvec3 c{coordinate(r, name, 30, 'x'), coordinate(r, name, 38, 'y'), coordinate(r, name, 46, 'z')};
 
@@ -98,7 +98,7 @@ SphereSet parse_pdb(std::string_view text, const std::string& name) {
     s.radii.push_back(radius);
     s.scalars.push_back(b ? *b : 0.0);
   }
-  if (s.centres.empty()) throw MeshError(name, "no ATOM or HETATM records in model 1");
+  if (s.centres.empty()) throw FileError(name, "no ATOM or HETATM records in model 1");
   if (no_bfactor_line) {
     s.scalars.clear();
     s.notes.push_back("no B-factor (columns 61-66) on line " + std::to_string(no_bfactor_line) + ": no scalar");

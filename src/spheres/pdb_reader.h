@@ -14,7 +14,7 @@ namespace zs {
 // is the element's van der Waals radius (vdw_radii.h); a blank element
 // field falls back to the atom name (columns 13-16). Alternate locations
 // other than the first one seen are skipped and counted. The B-factor is the
-// scalar when every atom has one. Throws MeshError naming the file and line
+// scalar when every atom has one. Throws FileError naming the file and line
 // for a record too short for its coordinates, a coordinate that is not a
 // number or not finite, and for a file without atoms.
 SphereSet parse_pdb(std::string_view text, const std::string& name);

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <filesystem>
 
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "spheres/pdb_reader.h"
 #include "spheres/sphere_reader.h"
 
@@ -27,11 +27,11 @@ bool is_sphere_file(const std::string& path) {
 
 SphereSet read_sphere_file(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw MeshError(path, "no such file");
+  if (!std::filesystem::exists(path, ec)) throw FileError(path, "no such file");
   const std::string e = lower_extension(path);
   if (e == ".sph") return read_spheres(path);
   if (e == ".pdb" || e == ".ent") return read_pdb(path);
-  throw MeshError(path, "unknown sphere format (expected .pdb, .ent or .sph)");
+  throw FileError(path, "unknown sphere format (expected .pdb, .ent or .sph)");
 }
 
 }  // namespace zs

@@ -9,7 +9,7 @@ namespace zs {
 
 // True when the file name has a sphere format's extension (any case).
 bool is_sphere_file(const std::string& path);
-// Reads a sphere file by its extension; throws MeshError naming the file.
+// Reads a sphere file by its extension; throws FileError naming the file.
 SphereSet read_sphere_file(const std::string& path);
 
 }  // namespace zs

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "util/text_lines.h"
 
 namespace zs {
@@ -12,7 +12,7 @@ namespace zs {
 namespace {
 
 [[noreturn]] void fail_at(const std::string& name, size_t line, const std::string& what) {
-  throw MeshError(name, line, what);
+  throw FileError(name, line, what);
 }
 
 constexpr size_t kMax = 5;  // x y z r scalar
@@ -54,7 +54,7 @@ SphereSet parse_spheres(std::string_view text, const std::string& name) {
     if (n == 5) s.scalars.push_back(v[4]);
     if (v[3] == 0.0 || (n == 5 && !std::isfinite(v[4]))) ++s.degenerate;
   }
-  if (s.centres.empty()) throw MeshError(name, "no spheres (expected lines 'x y z r [scalar]')");
+  if (s.centres.empty()) throw FileError(name, "no spheres (expected lines 'x y z r [scalar]')");
   if (s.has_scalars()) s.scalar_name = "scalar";
   return s;
 }

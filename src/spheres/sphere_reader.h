@@ -11,7 +11,7 @@
 
 namespace zs {
 
-// Throws MeshError naming the file and line: a wrong number of fields, a
+// Throws FileError naming the file and line: a wrong number of fields, a
 // token that is not a number, a non-finite coordinate, a negative or
 // non-finite radius, no spheres at all. A zero radius or a non-finite scalar
 // is kept and counted as degenerate.

@@ -9,7 +9,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -36,16 +36,16 @@ AtomicFile::~AtomicFile() {
 
 void AtomicFile::check_writable() const {
   std::error_code ec;
-  if (fs::is_directory(final_, ec)) throw MeshError(final_, "cannot write: is a directory");
+  if (fs::is_directory(final_, ec)) throw FileError(final_, "cannot write: is a directory");
   const int fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
-  if (fd < 0) throw MeshError(final_, std::string("cannot write: ") + std::strerror(errno));
+  if (fd < 0) throw FileError(final_, std::string("cannot write: ") + std::strerror(errno));
   ::close(fd);
   ::unlink(temp_.c_str());
 }
 
 void AtomicFile::commit() {
   if (std::rename(temp_.c_str(), final_.c_str()) != 0) {
-    throw MeshError(final_, std::string("cannot write: ") + std::strerror(errno));
+    throw FileError(final_, std::string("cannot write: ") + std::strerror(errno));
   }
   committed_ = true;
 }

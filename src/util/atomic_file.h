@@ -20,9 +20,9 @@ class AtomicFile {
   const std::string& final_path() const { return final_; }
   // Creates and removes the temporary, so that an unwritable destination
   // (no such directory, no permission, a directory under the final name)
-  // fails before the work that would fill it. Throws MeshError.
+  // fails before the work that would fill it. Throws FileError.
   void check_writable() const;
-  // Renames the temporary onto the final name; throws MeshError on failure.
+  // Renames the temporary onto the final name; throws FileError on failure.
   void commit();
 
  private:

@@ -8,18 +8,18 @@
 #include <fstream>
 #include <sstream>
 
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
 std::string read_text_file(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw MeshError(path, "is a directory, not a file");
+  if (std::filesystem::is_directory(path, ec)) throw FileError(path, "is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshError(path, std::string("cannot open: ") + std::strerror(errno));
+  if (!in) throw FileError(path, std::string("cannot open: ") + std::strerror(errno));
   std::ostringstream ss;
   ss << in.rdbuf();
-  if (in.bad()) throw MeshError(path, "read error");
+  if (in.bad()) throw FileError(path, "read error");
   return ss.str();
 }
 

@@ -10,7 +10,7 @@
 
 namespace zs {
 
-// Throws MeshError naming the file when it cannot be opened or read, or is a
+// Throws FileError naming the file when it cannot be opened or read, or is a
 // directory.
 std::string read_text_file(const std::string& path);
 

@@ -11,7 +11,7 @@
 
 #include <cstdint>
 
-#include "scene/camera.h"
+#include "view/camera.h"
 #include "volume/pixel_lists.h"
 #include "volume/segment_batch.h"
 #include "volume/segment_integrator.h"

@@ -19,8 +19,8 @@
 
 #include "mesh/tet_mesh.h"
 #include "mesh/topology.h"
-#include "scene/camera.h"
-#include "volume/transfer_function.h"
+#include "view/camera.h"
+#include "optics/transfer_function.h"
 
 namespace zs {
 

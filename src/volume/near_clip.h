@@ -15,7 +15,7 @@
 #include "mesh/tet_mesh.h"
 #include "mesh/topology.h"
 #include "raster/screen_triangle.h"
-#include "scene/camera.h"
+#include "view/camera.h"
 #include "volume/face_classes.h"
 
 namespace zs {

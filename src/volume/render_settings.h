@@ -6,9 +6,9 @@
 #include <string>
 
 #include "raster/bconvert_scan.h"
-#include "scene/camera.h"
+#include "view/camera.h"
 #include "volume/segment_integrator.h"
-#include "volume/transfer_function.h"
+#include "optics/transfer_function.h"
 
 namespace zs {
 

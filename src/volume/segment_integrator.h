@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "volume/transfer_function.h"
+#include "optics/transfer_function.h"
 
 namespace zs {
 

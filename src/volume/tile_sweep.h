@@ -12,7 +12,7 @@
 
 #include "raster/bconvert_scan.h"
 #include "raster/raster_target.h"
-#include "scene/camera.h"
+#include "view/camera.h"
 #include "volume/face_classes.h"
 #include "volume/near_clip.h"
 #include "volume/pixel_lists.h"

@@ -1,5 +1,5 @@
 // libFuzzer target: the PDB atom reader (parse_pdb). Errors it reports
-// (MeshError, one line naming the input) are expected outcomes; any other
+// (FileError, one line naming the input) are expected outcomes; any other
 // exception, crash, leak or sanitizer report is a finding, and so is an
 // accepted set that breaks the readers' contract (fuzz_sphere_check.h). There
 // is no sphere renderer yet to go past the parser into.
@@ -8,13 +8,13 @@
 #include <string_view>
 
 #include "fuzz_sphere_check.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "spheres/pdb_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     zs::fuzz::check_spheres(zs::parse_pdb(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.pdb"));
-  } catch (const zs::MeshError&) {
+  } catch (const zs::FileError&) {
   }
   return 0;
 }

@@ -3,7 +3,7 @@
 // then our fan triangulation, closure, manifold and self-intersection
 // checks). The first byte picks the format (mod 4: off, stl, obj, ply; the
 // seeds use '0'..'3'), the rest is the file, written to a per-process
-// temporary because the readers take paths. Rejections (MeshError naming the
+// temporary because the readers take paths. Rejections (FileError naming the
 // file) are expected outcomes; surface_precheck.h keeps CGAL 5.5's readers
 // from the inputs they crash or run out of memory on (docs/robustness.md).
 #include <cstddef>
@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "mesh/generate/surface_io.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
@@ -29,7 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   try {
     (void)zs::read_surface(path);
-  } catch (const zs::MeshError&) {
+  } catch (const zs::FileError&) {
   }
   std::remove(path.c_str());
   return 0;

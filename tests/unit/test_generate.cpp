@@ -22,7 +22,7 @@
 #include "mesh/generate/tet_ops.h"
 #include "mesh/generate/tetgen_mesher.h"
 #include "mesh/generate/voxel_image.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "test_paths.h"
 
 namespace fs = std::filesystem;
@@ -198,7 +198,7 @@ TEST(GenerateSurface, ReadsOffSurfaceAndRejectsOpenOrMissing) {
   try {
     zs::read_surface((dir / "open.off").string());
     ADD_FAILURE() << "open surface accepted";
-  } catch (const zs::MeshError& e) {
+  } catch (const zs::FileError& e) {
     EXPECT_NE(std::string(e.what()).find("open.off: surface is not closed"), std::string::npos) << e.what();
   }
   // Two overlapping cubes in one soup: closed and manifold, but crossing.
@@ -216,13 +216,13 @@ TEST(GenerateSurface, ReadsOffSurfaceAndRejectsOpenOrMissing) {
   try {
     zs::read_surface((dir / "crossing.off").string());
     ADD_FAILURE() << "self-intersecting surface accepted";
-  } catch (const zs::MeshError& e) {
+  } catch (const zs::FileError& e) {
     EXPECT_NE(std::string(e.what()).find("crossing.off: surface intersects itself"), std::string::npos) << e.what();
   }
   try {
     zs::read_surface((dir / "nope.stl").string());
     ADD_FAILURE() << "missing file accepted";
-  } catch (const zs::MeshError& e) {
+  } catch (const zs::FileError& e) {
     EXPECT_NE(std::string(e.what()).find("nope.stl"), std::string::npos);
   }
 }
@@ -239,7 +239,7 @@ TEST(GenerateSurface, PlyHeaderCheckedBeforeCgal) {
   try {
     zs::read_surface((dir / "bad.ply").string());
     ADD_FAILURE() << "property before element accepted";
-  } catch (const zs::MeshError& e) {
+  } catch (const zs::FileError& e) {
     EXPECT_NE(std::string(e.what()).find("bad.ply:4: PLY header: property before any element"), std::string::npos)
         << e.what();
   }
@@ -292,7 +292,7 @@ TEST(GenerateCgal, GrayImageBallAndImageField) {
     if (r > 1.0) ASSERT_NEAR(m.scalars[i], r, 0.05);
   }
 
-  EXPECT_THROW(zs::mesh_gray_image((dir / "none.inr").string(), 1.0, true, crit), zs::MeshError);
+  EXPECT_THROW(zs::mesh_gray_image((dir / "none.inr").string(), 1.0, true, crit), zs::FileError);
 }
 
 TEST(GenerateFields, AnalyticValuesAtKnownPoints) {

@@ -10,9 +10,9 @@
 
 #include <cmath>
 
-#include "scene/camera.h"
+#include "view/camera.h"
 #include "volume/render_settings.h"
-#include "volume/transfer_function.h"
+#include "optics/transfer_function.h"
 
 #include "mesh/hex_split.h"
 #include "mesh/tet_mesh.h"

@@ -6,7 +6,7 @@
 
 #include "mesh/io/mesh_io.h"
 #include "mesh/io/off_io.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "mesh/topology.h"
 #include "mesh/validate.h"
 #include "test_paths.h"
@@ -54,7 +54,7 @@ TEST(OffIo, ErrorsNameFileAndLine) {
   try {
     parse_off("4 1\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 1 2 4\n", "bad.off");
     FAIL() << "no error";
-  } catch (const MeshError& e) {
+  } catch (const FileError& e) {
     EXPECT_STREQ(e.what(), "bad.off:6: vertex index 4 out of range (mesh has 4 vertices, indices are 0-based)");
   }
 }
@@ -78,7 +78,7 @@ TEST(OffIo, RoundTripIsExact) {
 TEST(OffIo, FailedWriteLeavesNoFile) {
   TetMesh m;
   const std::string p = "/nonexistent-dir-zsweep/out.off";
-  EXPECT_THROW(write_mesh(p, m), MeshError);
+  EXPECT_THROW(write_mesh(p, m), FileError);
   EXPECT_FALSE(std::filesystem::exists(p));
 }
 

@@ -8,7 +8,7 @@
 #include "image/image.h"
 #include "mesh/io/off_io.h"
 #include "scene/scene.h"
-#include "volume/transfer_function.h"
+#include "optics/transfer_function.h"
 #include "test_paths.h"
 
 namespace zs {

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "spheres/pdb_reader.h"
 #include "spheres/sphere_io.h"
 #include "spheres/sphere_reader.h"
@@ -16,12 +16,12 @@
 namespace zs {
 namespace {
 
-// The message of the MeshError that f throws ("" if none).
+// The message of the FileError that f throws ("" if none).
 template <class F>
 std::string error_of(F f) {
   try {
     f();
-  } catch (const MeshError& e) {
+  } catch (const FileError& e) {
     return e.what();
   }
   return "";

@@ -1,6 +1,6 @@
 // The checks before CGAL 5.5's surface readers (surface_precheck.h): counts
 // the file cannot hold, face sizes that do not match their lines, PLY headers
-// whose types CGAL's reader would dereference as null. Each is one MeshError
+// whose types CGAL's reader would dereference as null. Each is one FileError
 // naming the file and, for text, the line; valid files still read.
 #include <cstdint>
 #include <cstring>
@@ -12,7 +12,7 @@
 
 #include "mesh/generate/surface_io.h"
 #include "mesh/generate/surface_precheck.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "test_paths.h"
 
 namespace zs {
@@ -21,14 +21,14 @@ namespace {
 const char* const kTetOff = "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
 const char* const kPlyBody = "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
 
-// The MeshError of read_surface on a file with these bytes, without the
+// The FileError of read_surface on a file with these bytes, without the
 // scratch directory ("" when it reads).
 std::string surface_error(const std::string& name, const std::string& bytes) {
   const auto p = test::scratch_dir() / name;
   std::ofstream(p, std::ios::binary) << bytes;
   try {
     read_surface(p.string());
-  } catch (const MeshError& e) {
+  } catch (const FileError& e) {
     std::string w = e.what();
     return w.substr(w.find(name));
   }

@@ -7,7 +7,7 @@
 
 #include "mesh/io/mesh_io.h"
 #include "mesh/io/tetgen_io.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "test_paths.h"
 
 namespace fs = std::filesystem;
@@ -24,7 +24,7 @@ zs::TetMesh two_tets() {
 
 void write_text(const fs::path& p, const std::string& s) { std::ofstream(p) << s; }
 
-// Runs f, expecting a MeshError whose message contains `needle`, and checks
+// Runs f, expecting a FileError whose message contains `needle`, and checks
 // that TetGen's own chatter did not reach stdout.
 template <class F>
 void expect_error(F&& f, const std::string& needle) {
@@ -32,8 +32,8 @@ void expect_error(F&& f, const std::string& needle) {
   try {
     f();
     testing::internal::GetCapturedStdout();
-    ADD_FAILURE() << "expected MeshError containing " << needle;
-  } catch (const zs::MeshError& e) {
+    ADD_FAILURE() << "expected FileError containing " << needle;
+  } catch (const zs::FileError& e) {
     std::string out = testing::internal::GetCapturedStdout();
     EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line: " << e.what();

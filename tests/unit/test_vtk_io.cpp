@@ -16,13 +16,13 @@
 #include "mesh/io/vtk_io.h"
 #include "mesh/topology.h"
 #include "mesh/validate.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "mesh/tet_mesh.h"
 #include "test_paths.h"
 
 namespace {
 
-using zs::MeshError;
+using zs::FileError;
 using zs::Topology;
 using zs::ValidationReport;
 using zs::build_topology;
@@ -40,12 +40,12 @@ std::string read_bytes(const fs::path& p) {
   return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
 }
 
-// Expects a MeshError whose message names the file; returns the message.
+// Expects a FileError whose message names the file; returns the message.
 template <class F>
 std::string expect_mesh_error(F&& f, const std::string& path) {
   try {
     f();
-  } catch (const MeshError& e) {
+  } catch (const FileError& e) {
     std::string msg = e.what();
     EXPECT_NE(msg.find(path), std::string::npos) << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << "multi-line: " << msg;
@@ -54,7 +54,7 @@ std::string expect_mesh_error(F&& f, const std::string& path) {
     ADD_FAILURE() << "wrong exception type: " << e.what();
     return {};
   }
-  ADD_FAILURE() << "no MeshError for " << path;
+  ADD_FAILURE() << "no FileError for " << path;
   return {};
 }
 
@@ -170,7 +170,7 @@ TEST(VtkIo, VtuDefaultScalarNameAndNoScalar) {
   EXPECT_EQ(r.num_tets(), 1u);
 }
 
-TEST(VtkIo, VtuWriteFailureIsMeshError) {
+TEST(VtkIo, VtuWriteFailureIsFileError) {
   TetMesh m;
   m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   m.tets = {{0, 1, 2, 3}};

@@ -16,7 +16,7 @@
 
 #include "mesh/generate/tet_ops.h"
 #include "mesh/io/stdio_capture.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -115,14 +115,14 @@ TetMesh mesh_gray_image(const std::string& path, double iso, bool inside_above,
                         const Mesh3Criteria& crit) {
   check(crit);
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw MeshError(path, "no such file");
+  if (!std::filesystem::exists(path, ec)) throw FileError(path, "no such file");
   CGAL::Image_3 image;
   bool ok;
   {
     StdioCapture quiet(2);  // ImageIO explains failures on stderr; we say one line
     ok = image.read(path);
   }
-  if (!ok) throw MeshError(path, "cannot read 3D image (expected .inr/.inr.gz, ...)");
+  if (!ok) throw FileError(path, "cannot read 3D image (expected .inr/.inr.gz, ...)");
   // Label 1 on the requested side of the iso-value; outside the image counts
   // as the other side so the solid is closed at the image border.
   const double outside = inside_above ? iso - 1.0 - std::abs(iso) : iso + 1.0 + std::abs(iso);
@@ -138,7 +138,7 @@ TetMesh mesh_gray_image(const std::string& path, double iso, bool inside_above,
     m.notes.push_back("generated from " + path + " (iso " + std::to_string(iso) + ")");
     return m;
   } catch (const std::runtime_error& e) {
-    throw MeshError(path, e.what());
+    throw FileError(path, e.what());
   }
 }
 

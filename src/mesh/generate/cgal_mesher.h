@@ -31,7 +31,7 @@ struct Mesh3Criteria {
 TetMesh mesh_implicit(const ImplicitShape& shape, const Mesh3Criteria& crit);
 
 // Meshes where the image value is above `iso` (or below, if !inside_above)
-// after CGAL's trilinear interpolation. Throws zs::MeshError naming the file.
+// after CGAL's trilinear interpolation. Throws zs::FileError naming the file.
 TetMesh mesh_gray_image(const std::string& path, double iso, bool inside_above,
                         const Mesh3Criteria& crit);
 

@@ -17,7 +17,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include "mesh/generate/surface_precheck.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -39,7 +39,7 @@ static bool self_intersects(const Plc& plc) {
 
 Plc read_surface(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw MeshError(path, "no such file");
+  if (!std::filesystem::exists(path, ec)) throw FileError(path, "no such file");
   // CGAL's readers allocate by counts in the file, and its PLY reader trusts
   // the header's types: check both first (surface_precheck.h).
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -60,8 +60,8 @@ Plc read_surface(const std::string& path) {
     }
     std::cerr.rdbuf(old);
   }
-  if (!ok) throw MeshError(path, "cannot read surface (expected a triangle .off, .stl, .ply or .obj)");
-  if (polys.empty()) throw MeshError(path, "surface has no faces");
+  if (!ok) throw FileError(path, "cannot read surface (expected a triangle .off, .stl, .ply or .obj)");
+  if (polys.empty()) throw FileError(path, "surface has no faces");
 
   // OFF/PLY soups may repeat a point under two indices; TetGen would see a
   // duplicate vertex, so merge exact duplicates.
@@ -77,9 +77,9 @@ Plc read_surface(const std::string& path) {
     }
   }
   for (const auto& poly : polys) {
-    if (poly.size() < 3) throw MeshError(path, "face with fewer than 3 corners");
+    if (poly.size() < 3) throw FileError(path, "face with fewer than 3 corners");
     for (std::size_t v : poly)
-      if (v >= pts.size()) throw MeshError(path, "face refers to a missing vertex");
+      if (v >= pts.size()) throw FileError(path, "face refers to a missing vertex");
     for (size_t k = 1; k + 1 < poly.size(); ++k)
       plc.add_triangle(merged[poly[0]], merged[poly[k]], merged[poly[k + 1]]);
   }
@@ -91,7 +91,7 @@ Plc read_surface(const std::string& path) {
     const auto& t = f.polygons[0];
     for (int k = 0; k < 3; ++k) {
       uint32_t a = t[k], b = t[(k + 1) % 3];
-      if (a == b) throw MeshError(path, "degenerate face (repeated vertex)");
+      if (a == b) throw FileError(path, "degenerate face (repeated vertex)");
       ++uses[{std::min(a, b), std::max(a, b)}];
     }
   }
@@ -100,10 +100,10 @@ Plc read_surface(const std::string& path) {
     if (n == 1) ++open;
     if (n > 2) ++nonmanifold;
   }
-  if (open) throw MeshError(path, "surface is not closed (" + std::to_string(open) + " boundary edges)");
+  if (open) throw FileError(path, "surface is not closed (" + std::to_string(open) + " boundary edges)");
   if (nonmanifold)
-    throw MeshError(path, "surface is non-manifold (" + std::to_string(nonmanifold) + " edges on 3+ faces)");
-  if (self_intersects(plc)) throw MeshError(path, "surface intersects itself (TetGen needs a valid closed surface)");
+    throw FileError(path, "surface is non-manifold (" + std::to_string(nonmanifold) + " edges on 3+ faces)");
+  if (self_intersects(plc)) throw FileError(path, "surface intersects itself (TetGen needs a valid closed surface)");
   return plc;
 }
 

@@ -9,7 +9,7 @@
 namespace zs {
 
 // Polygons with more than three corners are fan-triangulated. Throws
-// zs::MeshError naming the file when it cannot be read, is empty, or is not
+// zs::FileError naming the file when it cannot be read, is empty, or is not
 // closed (every edge must be shared by exactly two triangles).
 Plc read_surface(const std::string& path);
 

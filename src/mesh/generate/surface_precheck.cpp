@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -23,7 +23,7 @@ namespace {
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshError(path, std::string("cannot open: ") + std::strerror(errno));
+  if (!in) throw FileError(path, std::string("cannot open: ") + std::strerror(errno));
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
@@ -123,10 +123,10 @@ void precheck_off(const std::string& path) {
   const std::string full(kw.substr(0, 24));
   if (kw.starts_with("4")) kw.remove_prefix(1);
   if (kw != "OFF" && kw.ends_with("OFF"))
-    throw MeshError(path, in.line_at(k0), "OFF variant '" + full + "' is not supported (expected OFF or 4OFF)");
-  if (kw != "OFF") throw MeshError(path, "not an OFF surface (no OFF header)");
+    throw FileError(path, in.line_at(k0), "OFF variant '" + full + "' is not supported (expected OFF or 4OFF)");
+  if (kw != "OFF") throw FileError(path, "not an OFF surface (no OFF header)");
   in.skip_comments();
-  if (text.compare(in.pos, 6, "BINARY") == 0) throw MeshError(path, in.line(), "binary OFF is not supported");
+  if (text.compare(in.pos, 6, "BINARY") == 0) throw FileError(path, in.line(), "binary OFF is not supported");
 
   long long nv = 0, nf = 0, ne = 0;
   if (in.pos >= text.size() || !std::isdigit(static_cast<unsigned char>(text[in.pos])) || !in.read_int(nv) ||
@@ -135,11 +135,11 @@ void precheck_off(const std::string& path) {
   const size_t header_line = in.line();  // once; the face loop below must stay linear
   // CGAL doubles the edge count in an int.
   if (ne > INT_MAX / 2 || ne < INT_MIN / 2)
-    throw MeshError(path, header_line, "OFF header: edge count " + std::to_string(ne) + " is too large");
+    throw FileError(path, header_line, "OFF header: edge count " + std::to_string(ne) + " is too large");
   // Each vertex and face is a line of at least two bytes.
   const size_t left = text.size() - in.pos;
   if (static_cast<uint64_t>(nv + nf) > left / 2 + 1)
-    throw MeshError(path, header_line,
+    throw FileError(path, header_line,
                     "OFF header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
                         " faces, more than the remaining " + std::to_string(left) + " bytes can hold");
   for (long long i = 0; i < nv; ++i) {
@@ -156,18 +156,18 @@ void precheck_off(const std::string& path) {
     std::string bad;
     const std::vector<double> v = face_numbers(l, bad);
     if (!bad.empty())
-      throw MeshError(path, in.line_at(start), "OFF face " + std::to_string(f) + ": '" + bad + "' is not a number");
+      throw FileError(path, in.line_at(start), "OFF face " + std::to_string(f) + ": '" + bad + "' is not a number");
     if (v.empty()) return;  // CGAL fails on an empty face line by itself
     // CGAL sizes the face by its first number before it reads the indices,
     // and casts every number to size_t (undefined for a negative double).
     if (!(v[0] >= 0.0 && v[0] <= static_cast<double>(v.size() - 1)))
-      throw MeshError(path, in.line_at(start), "OFF face " + std::to_string(f) + ": corner count '" +
+      throw FileError(path, in.line_at(start), "OFF face " + std::to_string(f) + ": corner count '" +
                                                    std::string(l.substr(0, std::min<size_t>(l.find_first_of(" \t\r"), 24))) +
                                                    "' does not match the " + std::to_string(v.size() - 1) +
                                                    " numbers after it");
     for (size_t k = 1; k <= static_cast<size_t>(v[0]); ++k)
       if (!(v[k] >= 0.0 && v[k] < static_cast<double>(nv)))
-        throw MeshError(path, in.line_at(start), "OFF face " + std::to_string(f) + ": vertex index " +
+        throw FileError(path, in.line_at(start), "OFF face " + std::to_string(f) + ": vertex index " +
                                                      fmt_number(v[k]) + " out of range (" + std::to_string(nv) +
                                                      " vertices, 0-based)");
   }
@@ -181,11 +181,11 @@ void precheck_stl(const std::string& path) {
   if (got >= 6 && std::string_view(head, 5) == "solid" && is_ws(head[5])) return;  // ASCII
   std::error_code ec;
   const uint64_t size = std::filesystem::file_size(path, ec);
-  if (ec || got < 84) throw MeshError(path, "binary STL shorter than its 84-byte header");
+  if (ec || got < 84) throw FileError(path, "binary STL shorter than its 84-byte header");
   uint32_t n = 0;
   std::memcpy(&n, head + 80, 4);  // little-endian, as is the machine
   if (size != 84 + 50 * uint64_t(n))
-    throw MeshError(path, "binary STL: " + std::to_string(n) + " triangles need " +
+    throw FileError(path, "binary STL: " + std::to_string(n) + " triangles need " +
                               std::to_string(84 + 50 * uint64_t(n)) + " bytes, the file has " + std::to_string(size));
 }
 
@@ -205,7 +205,7 @@ void precheck_ply(const std::string& path) {
     std::istringstream words(line);
     std::string w, a, b, c;
     words >> w;
-    if (n == 1 && w != "ply") throw MeshError(path, 1, "not a PLY file (no 'ply' magic)");
+    if (n == 1 && w != "ply") throw FileError(path, 1, "not a PLY file (no 'ply' magic)");
     if (n <= 2) continue;  // CGAL takes line 2 as the format whatever it says ("end_header ascii 1.0": a finding)
     if (w == "element") {
       words >> element >> a;
@@ -213,13 +213,13 @@ void precheck_ply(const std::string& path) {
       // element without properties looped over them for ever (a finding).
       // An item takes at least one byte.
       if (a.empty() || a.size() > 18 || a.find_first_not_of("0123456789") != std::string::npos)
-        throw MeshError(path, n, "PLY header: element count '" + a.substr(0, 24) + "' is not a number of items");
+        throw FileError(path, n, "PLY header: element count '" + a.substr(0, 24) + "' is not a number of items");
       items += std::stoull(a);
-      if (items > size) throw MeshError(path, n, "PLY header: element counts exceed the file's " + std::to_string(size) + " bytes");
+      if (items > size) throw FileError(path, n, "PLY header: element counts exceed the file's " + std::to_string(size) + " bytes");
       have_element = true;
     }
     if (w == "property") {
-      if (!have_element) throw MeshError(path, n, "PLY header: property before any element");
+      if (!have_element) throw FileError(path, n, "PLY header: property before any element");
       std::string d;
       words >> a >> b >> c >> d;  // type name | list count-type entry-type name
       const bool list = a == "list";
@@ -227,23 +227,23 @@ void precheck_ply(const std::string& path) {
       // A list's length is read, then that many entries allocated, before
       // anything checks it: allow 16 bits at most.
       if (list && !is_one_of(b, {"char", "uchar", "int8", "uint8", "short", "ushort", "int16", "uint16"}))
-        throw MeshError(path, n, "PLY header: list count type '" + b + "' (at most 16 bits: uchar or ushort)");
+        throw FileError(path, n, "PLY header: list count type '" + b + "' (at most 16 bits: uchar or ushort)");
       const bool vertex = element == "vertex" || element == "vertices";
       if (vertex && (name == "x" || name == "y" || name == "z") &&
           (list || !is_one_of(a, {"float", "float32", "double", "float64"})))
-        throw MeshError(path, n, "PLY header: vertex coordinate '" + name + "' must be float or double");
+        throw FileError(path, n, "PLY header: vertex coordinate '" + name + "' must be float or double");
       // With a uchar `red` (or r) and a uchar g, CGAL reads `green` as uchar
       // whatever it was declared: colours are uchar or absent.
       const bool face = element == "face" || element == "faces";
       if ((vertex || face) && is_one_of(name, {"red", "green", "blue", "r", "g", "b"}) &&
           (list || !is_one_of(a, {"uchar", "uint8"})))
-        throw MeshError(path, n, "PLY header: " + element + " colour '" + name + "' must be uchar");
+        throw FileError(path, n, "PLY header: " + element + " colour '" + name + "' must be uchar");
       if (element == "halfedge" && (name == "source" || name == "target") && (list || !is_one_of(a, {"uint", "uint32"})))
-        throw MeshError(path, n, "PLY header: halfedge '" + name + "' must be uint");
+        throw FileError(path, n, "PLY header: halfedge '" + name + "' must be uint");
     }
     if (w == "end_header") return;
   }
-  throw MeshError(path, "PLY header: no end_header");
+  throw FileError(path, "PLY header: no end_header");
 }
 
 }  // namespace zs

@@ -2,7 +2,7 @@
 // allocate by counts in the file (OFF header and face sizes, PLY list sizes)
 // and dereference a null pointer on some PLY headers; under a memory budget,
 // ASan or plain bad luck that is a crash, not an error (docs/robustness.md,
-// finding 5). Each check throws MeshError naming the file (and line).
+// finding 5). Each check throws FileError naming the file (and line).
 #pragma once
 
 #include <string>

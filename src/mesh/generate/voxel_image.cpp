@@ -7,7 +7,7 @@
 #include <CGAL/Image_3.h>
 
 #include "mesh/io/stdio_capture.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -32,20 +32,20 @@ double VoxelImage::sample(const glm::dvec3& p) const {
 
 VoxelImage read_voxel_image(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw MeshError(path, "no such file");
+  if (!std::filesystem::exists(path, ec)) throw FileError(path, "no such file");
   CGAL::Image_3 img;
   bool ok;
   {
     StdioCapture quiet(2);  // ImageIO explains failures on stderr; we say one line
     ok = img.read(path);
   }
-  if (!ok) throw MeshError(path, "cannot read 3D image (expected .inr/.inr.gz, .hdr, ...)");
-  if (img.image()->vdim != 1) throw MeshError(path, "image has vector voxels; expected one value per voxel");
+  if (!ok) throw FileError(path, "cannot read 3D image (expected .inr/.inr.gz, .hdr, ...)");
+  if (img.image()->vdim != 1) throw FileError(path, "image has vector voxels; expected one value per voxel");
   VoxelImage v;
   v.nx = img.xdim();
   v.ny = img.ydim();
   v.nz = img.zdim();
-  if (v.nx == 0 || v.ny == 0 || v.nz == 0) throw MeshError(path, "image is empty");
+  if (v.nx == 0 || v.ny == 0 || v.nz == 0) throw FileError(path, "image is empty");
   v.spacing = {img.vx(), img.vy(), img.vz()};
   v.origin = {img.tx(), img.ty(), img.tz()};
   v.values.resize(v.nx * v.ny * v.nz);

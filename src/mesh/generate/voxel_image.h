@@ -21,7 +21,7 @@ struct VoxelImage {
   double sample(const glm::dvec3& p) const;
 };
 
-// Throws zs::MeshError naming the file.
+// Throws zs::FileError naming the file.
 VoxelImage read_voxel_image(const std::string& path);
 
 }  // namespace zs

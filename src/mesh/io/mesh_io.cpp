@@ -7,7 +7,7 @@
 #include "mesh/io/off_io.h"
 #include "mesh/io/tetgen_io.h"
 #include "mesh/io/vtk_io.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "util/atomic_file.h"
 
 namespace zs {
@@ -32,8 +32,8 @@ MeshFormat format_of(const std::string& path, const ReadOptions& opt) {
 
 TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
   std::error_code ec;
-  if (!fs::exists(path, ec)) throw MeshError(path, "no such file");
-  if (fs::is_directory(path, ec)) throw MeshError(path, "is a directory, not a mesh file");
+  if (!fs::exists(path, ec)) throw FileError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw FileError(path, "is a directory, not a mesh file");
   switch (format_of(path, opt)) {
     case MeshFormat::Off:
       return read_off(path);
@@ -42,14 +42,14 @@ TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
       return read_vtk(path, opt);
     case MeshFormat::Plot3d:
       if (opt.q_path.empty())
-        throw MeshError(path, "PLOT3D grid needs its solution file (--q FILE)");
+        throw FileError(path, "PLOT3D grid needs its solution file (--q FILE)");
       return read_plot3d(path, opt);
     case MeshFormat::TetGen:
       return read_tetgen(path);
     case MeshFormat::Unknown:
       break;
   }
-  throw MeshError(path, "unknown mesh format (expected .off, .vtu, .vtk, .node/.ele, or PLOT3D with --q)");
+  throw FileError(path, "unknown mesh format (expected .off, .vtu, .vtk, .node/.ele, or PLOT3D with --q)");
 }
 
 void write_mesh(const std::string& path, const TetMesh& m) {
@@ -71,7 +71,7 @@ void write_mesh(const std::string& path, const TetMesh& m) {
     case MeshFormat::Off: write_off(out.temp_path(), m); break;
     case MeshFormat::Vtu: write_vtu(out.temp_path(), m); break;
     default:
-      throw MeshError(path, "cannot write this format (expected .off, .vtu or .node/.ele)");
+      throw FileError(path, "cannot write this format (expected .off, .vtu or .node/.ele)");
   }
   out.commit();
 }

@@ -3,7 +3,7 @@
 //   .vtu .vtk        VTK XML / legacy (vtk_io.h, via VTK readers)
 //   *xyz.bin + q     PLOT3D (plot3d_io.h, via VTK's PLOT3D reader)
 //   .node / .ele     TetGen (tetgen_io.h, via the TetGen library)
-// Every failure is a zs::MeshError whose message names the file.
+// Every failure is a zs::FileError whose message names the file.
 #pragma once
 
 #include <string>

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <limits>
 
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 #include "util/text_lines.h"
 
 namespace zs {
@@ -37,7 +37,7 @@ class LineCursor {
   std::string_view token(size_t i) const { return tok_[i]; }
   size_t bytes_left() const { return lines_.bytes_left(); }
 
-  [[noreturn]] void fail(const std::string& what) const { throw MeshError(name_, lines_.line_no(), what); }
+  [[noreturn]] void fail(const std::string& what) const { throw FileError(name_, lines_.line_no(), what); }
 
  private:
   static constexpr size_t kMaxTok = 8;
@@ -82,7 +82,7 @@ uint32_t parse_index(const LineCursor& cur, std::string_view tok, uint64_t n_poi
 
 TetMesh parse_off(std::string_view text, const std::string& name) {
   LineCursor cur(text, name);
-  if (!cur.next()) throw MeshError(name, "empty file: expected 'n_vertices n_tets'");
+  if (!cur.next()) throw FileError(name, "empty file: expected 'n_vertices n_tets'");
 
   // Header: both counts on one line, or one per line.
   uint64_t n_pts = 0, n_tets = 0;
@@ -91,7 +91,7 @@ TetMesh parse_off(std::string_view text, const std::string& name) {
     n_tets = parse_count(cur, cur.token(1), "tet");
   } else if (cur.count() == 1) {
     n_pts = parse_count(cur, cur.token(0), "vertex");
-    if (!cur.next()) throw MeshError(name, cur.line(), "file ends before the tet count");
+    if (!cur.next()) throw FileError(name, cur.line(), "file ends before the tet count");
     if (cur.count() != 1) cur.fail("expected the tet count alone on this line");
     n_tets = parse_count(cur, cur.token(0), "tet");
   } else {
@@ -113,7 +113,7 @@ TetMesh parse_off(std::string_view text, const std::string& name) {
 
   for (uint64_t i = 0; i < n_pts; ++i) {
     if (!cur.next())
-      throw MeshError(name, cur.line(), "file ends after " + std::to_string(i) + " of " +
+      throw FileError(name, cur.line(), "file ends after " + std::to_string(i) + " of " +
                                             std::to_string(n_pts) + " vertices");
     if (cur.count() != 4)
       cur.fail("vertex " + std::to_string(i) + ": expected 'x y z s' (4 numbers), found " +
@@ -124,7 +124,7 @@ TetMesh parse_off(std::string_view text, const std::string& name) {
   }
   for (uint64_t t = 0; t < n_tets; ++t) {
     if (!cur.next())
-      throw MeshError(name, cur.line(), "file ends after " + std::to_string(t) + " of " +
+      throw FileError(name, cur.line(), "file ends after " + std::to_string(t) + " of " +
                                             std::to_string(n_tets) + " tets");
     if (cur.count() != 4)
       cur.fail("tet " + std::to_string(t) + ": expected 4 vertex indices, found " +
@@ -139,13 +139,13 @@ TetMesh read_off(const std::string& path) { return parse_off(read_text_file(path
 
 void write_off(const std::string& path, const TetMesh& m) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) throw MeshError(path, std::string("cannot write: ") + std::strerror(errno));
+  if (!f) throw FileError(path, std::string("cannot write: ") + std::strerror(errno));
   std::string buf;
   buf.reserve(1 << 16);
   auto flush = [&] {
     if (!buf.empty() && std::fwrite(buf.data(), 1, buf.size(), f) != buf.size()) {
       std::fclose(f);
-      throw MeshError(path, std::string("write failed: ") + std::strerror(errno));
+      throw FileError(path, std::string("write failed: ") + std::strerror(errno));
     }
     buf.clear();
   };
@@ -172,7 +172,7 @@ void write_off(const std::string& path, const TetMesh& m) {
     if (buf.size() > (1 << 16)) flush();
   }
   flush();
-  if (std::fclose(f) != 0) throw MeshError(path, std::string("write failed: ") + std::strerror(errno));
+  if (std::fclose(f) != 0) throw FileError(path, std::string("write failed: ") + std::strerror(errno));
 }
 
 }  // namespace zs

@@ -24,7 +24,7 @@
 #include "mesh/io/vtk_capture.h"
 #include "mesh/io/vtk_io.h"
 #include "mesh/hex_split.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -63,17 +63,17 @@ const Function& find_function(const std::string& path, const std::string& want) 
     if (key == f.name || key == f.array || key == std::to_string(f.number)) return f;
   std::string names;
   for (const Function& f : kFunctions) names += (names.empty() ? "" : ", ") + std::string(f.name);
-  throw MeshError(path, "unknown PLOT3D function '" + want + "'; valid: " + names);
+  throw FileError(path, "unknown PLOT3D function '" + want + "'; valid: " + names);
 }
 
 void require_file(const std::string& path, const char* role) {
   std::error_code ec;
   if (!fs::exists(path, ec))
-    throw MeshError(path, std::string("no such file (PLOT3D ") + role + ")");
-  if (fs::is_directory(path, ec)) throw MeshError(path, "is a directory, not a PLOT3D file");
-  if (!std::ifstream(path, std::ios::binary)) throw MeshError(path, "cannot open file");
+    throw FileError(path, std::string("no such file (PLOT3D ") + role + ")");
+  if (fs::is_directory(path, ec)) throw FileError(path, "is a directory, not a PLOT3D file");
+  if (!std::ifstream(path, std::ios::binary)) throw FileError(path, "cannot open file");
   if (fs::file_size(path, ec) == 0)
-    throw MeshError(path, std::string("empty PLOT3D ") + role + " file");
+    throw FileError(path, std::string("empty PLOT3D ") + role + " file");
 }
 
 // True if the grid file's size matches its header under some binary PLOT3D
@@ -211,22 +211,22 @@ std::string count(size_t n) {
 TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt) {
   require_file(xyz_path, "grid");
   if (opt.q_path.empty())
-    throw MeshError(xyz_path, "PLOT3D grid needs its solution file (--q FILE)");
+    throw FileError(xyz_path, "PLOT3D grid needs its solution file (--q FILE)");
   require_file(opt.q_path, "solution");
   const Function& fn = find_function(xyz_path, opt.scalar);
 
   if (!plausible_xyz(xyz_path))
-    throw MeshError(xyz_path, "not a binary 3-D PLOT3D grid (file size does not match its header)");
+    throw FileError(xyz_path, "not a binary 3-D PLOT3D grid (file size does not match its header)");
 
   detail::VtkMessageCapture capture;
   vtkSmartPointer<vtkMultiBlockDataSet> mb;
   try {
     mb = run_reader(xyz_path, opt.q_path, fn, capture);
   } catch (const std::bad_alloc&) {
-    throw MeshError(xyz_path, "PLOT3D reader ran out of memory (corrupt header?)");
+    throw FileError(xyz_path, "PLOT3D reader ran out of memory (corrupt header?)");
   }
   if (!mb)
-    throw MeshError(xyz_path,
+    throw FileError(xyz_path,
                     "PLOT3D reader: " + capture.first_error() + " (q file " + opt.q_path + ")");
 
   TetMesh m;
@@ -239,7 +239,7 @@ TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt) {
     int d[3];
     sg->GetDimensions(d);
     if (d[0] < 2 || d[1] < 2 || d[2] < 2)
-      throw MeshError(xyz_path, "block " + std::to_string(b) + " is not a 3-D grid (" +
+      throw FileError(xyz_path, "block " + std::to_string(b) + " is not a 3-D grid (" +
                                     std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
                                     std::to_string(d[2]) + ")");
     vtkPointData* pd = sg->GetPointData();
@@ -248,7 +248,7 @@ TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt) {
     vtkDataArray* energy = pd->GetArray("StagnationEnergy");
     vtkDataArray* f = fn.number == 140 ? nullptr : pd->GetArray(fn.array);
     if (fn.number == 140 ? !(rho && mom && energy) : !f)
-      throw MeshError(xyz_path, std::string("PLOT3D reader produced no '") + fn.array +
+      throw FileError(xyz_path, std::string("PLOT3D reader produced no '") + fn.array +
                                     "' array (does the q file match the grid?)");
     vtkDataArray* iblank = pd->GetArray("IBlank");
     has_iblank = has_iblank || iblank;
@@ -300,7 +300,7 @@ TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt) {
         }
     ++blocks;
   }
-  if (m.tets.empty()) throw MeshError(xyz_path, "PLOT3D grid has no (unblanked) cells");
+  if (m.tets.empty()) throw FileError(xyz_path, "PLOT3D grid has no (unblanked) cells");
 
   const size_t before = m.points.size();
   const size_t merged = merge_duplicates(m);

@@ -1,7 +1,7 @@
 // TetGen's library prints progress and errors with printf, CGAL's ImageIO
 // with fprintf(stderr). This captures a file descriptor (stdout by default)
 // for the duration of a call so our output stays clean, and keeps the text so
-// the last "Error:" line can go into a one-line MeshError.
+// the last "Error:" line can go into a one-line FileError.
 #pragma once
 
 #include <cstdio>

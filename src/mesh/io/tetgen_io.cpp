@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "mesh/io/stdio_capture.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -33,7 +33,7 @@ std::string base_of(const std::string& path) {
 // them against the file size before handing the file over.
 std::vector<long long> header_numbers(const std::string& file) {
   std::ifstream in(file);
-  if (!in) throw MeshError(file, "cannot open for reading");
+  if (!in) throw FileError(file, "cannot open for reading");
   std::string line;
   while (std::getline(in, line)) {
     size_t hash = line.find('#');
@@ -45,29 +45,29 @@ std::vector<long long> header_numbers(const std::string& file) {
       while (*s == ' ' || *s == '\t' || *s == ',' || *s == '\r') ++s;
       if (!*s) break;
       long long v = std::strtoll(s, &end, 10);
-      if (end == s) throw MeshError(file, "header is not a list of integers");
+      if (end == s) throw FileError(file, "header is not a list of integers");
       nums.push_back(v);
       s = end;
     }
     if (!nums.empty()) return nums;
   }
-  throw MeshError(file, "empty file (no header line)");
+  throw FileError(file, "empty file (no header line)");
 }
 
 void check_count(const std::string& file, long long n, long long min_bytes_each,
                  const char* what) {
-  if (n <= 0) throw MeshError(file, std::string("header gives no ") + what);
+  if (n <= 0) throw FileError(file, std::string("header gives no ") + what);
   std::error_code ec;
   auto size = static_cast<long long>(fs::file_size(file, ec));
-  if (ec) throw MeshError(file, "cannot stat file");
+  if (ec) throw FileError(file, "cannot stat file");
   if (n > INT_MAX || n * min_bytes_each > size)
-    throw MeshError(file, "header says " + std::to_string(n) + " " + what +
+    throw FileError(file, "header says " + std::to_string(n) + " " + what +
                               " but the file is only " + std::to_string(size) + " bytes");
 }
 
 void require_file(const std::string& file) {
   std::error_code ec;
-  if (!fs::exists(file, ec)) throw MeshError(file, "no such file");
+  if (!fs::exists(file, ec)) throw FileError(file, "no such file");
 }
 
 }  // namespace
@@ -75,18 +75,18 @@ void require_file(const std::string& file) {
 TetMesh read_tetgen(const std::string& path) {
   const std::string base = base_of(path);
   const std::string node_file = base + ".node", ele_file = base + ".ele";
-  if (base.size() > kMaxBase) throw MeshError(path, "path too long for TetGen");
+  if (base.size() > kMaxBase) throw FileError(path, "path too long for TetGen");
   require_file(node_file);
   require_file(ele_file);
 
   auto nh = header_numbers(node_file);
   check_count(node_file, nh[0], 8, "points");  // "i x y z" is at least 8 bytes
   if (nh.size() > 1 && nh[1] != 3)
-    throw MeshError(node_file, "dimension is " + std::to_string(nh[1]) + ", expected 3");
+    throw FileError(node_file, "dimension is " + std::to_string(nh[1]) + ", expected 3");
   auto eh = header_numbers(ele_file);
   check_count(ele_file, eh[0], 10, "tetrahedra");
   if (eh.size() > 1 && eh[1] != 4 && eh[1] != 10)
-    throw MeshError(ele_file, "tets have " + std::to_string(eh[1]) + " corners, expected 4 or 10");
+    throw FileError(ele_file, "tets have " + std::to_string(eh[1]) + " corners, expected 4 or 10");
 
   tetgenio io;
   std::vector<char> buf(base.begin(), base.end());
@@ -104,7 +104,7 @@ TetMesh read_tetgen(const std::string& path) {
     } catch (...) {  // TetGen throws int from terminatetetgen()
     }
     std::string out = cap.finish();
-    if (!ok) throw MeshError(file, tetgen_error_line(out, fallback));
+    if (!ok) throw FileError(file, tetgen_error_line(out, fallback));
   };
   load(node_file, &tetgenio::load_node);
   load(ele_file, &tetgenio::load_tet);
@@ -130,7 +130,7 @@ TetMesh read_tetgen(const std::string& path) {
     for (int k = 0; k < 4; ++k) {
       long long v = static_cast<long long>(io.tetrahedronlist[t * nc + k]) - first;
       if (v < 0 || v >= static_cast<long long>(np))
-        throw MeshError(ele_file, "tet " + std::to_string(t + first) + " has vertex index " +
+        throw FileError(ele_file, "tet " + std::to_string(t + first) + " has vertex index " +
                                       std::to_string(v + first) + " out of range");
       m.tets[t][k] = static_cast<uint32_t>(v);
     }
@@ -142,9 +142,9 @@ TetMesh read_tetgen(const std::string& path) {
 void write_tetgen(const std::string& path, const TetMesh& m) {
   const std::string base = base_of(path);
   const std::string node_file = base + ".node", ele_file = base + ".ele";
-  if (base.size() > kMaxBase) throw MeshError(path, "path too long for TetGen");
+  if (base.size() > kMaxBase) throw FileError(path, "path too long for TetGen");
   if (m.points.size() > INT_MAX / 3 || m.tets.size() > INT_MAX / 4)
-    throw MeshError(path, "mesh too large for the TetGen format");
+    throw FileError(path, "mesh too large for the TetGen format");
 
   // tetgenio frees its arrays with delete[] in its destructor.
   tetgenio io;
@@ -172,7 +172,7 @@ void write_tetgen(const std::string& path, const TetMesh& m) {
   // make sure both files can be created first.
   for (const std::string& f : {node_file, ele_file}) {
     std::FILE* fp = std::fopen(f.c_str(), "w");
-    if (!fp) throw MeshError(f, std::string("cannot write: ") + std::strerror(errno));
+    if (!fp) throw FileError(f, std::string("cannot write: ") + std::strerror(errno));
     std::fclose(fp);
   }
 
@@ -192,7 +192,7 @@ void write_tetgen(const std::string& path, const TetMesh& m) {
   for (const std::string& f : {node_file, ele_file}) {
     std::error_code ec;
     if (!fs::exists(f, ec) || out.find("Cannot create") != std::string::npos)
-      throw MeshError(f, tetgen_error_line(out, "cannot write"));
+      throw FileError(f, tetgen_error_line(out, "cannot write"));
   }
 }
 

@@ -1,5 +1,5 @@
 // Internal to zsweep_vtkio: routes VTK's error/warning text away from stderr
-// so failures surface as one-line MeshErrors. No VTK headers here on purpose.
+// so failures surface as one-line FileErrors. No VTK headers here on purpose.
 #pragma once
 
 #include <memory>

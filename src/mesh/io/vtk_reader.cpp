@@ -36,7 +36,7 @@
 
 #include "mesh/io/vtk_capture.h"
 #include "mesh/io/vtk_io.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -55,10 +55,10 @@ std::string lower_ext(const std::string& path) {
 vtkSmartPointer<vtkDataSet> read_dataset(const std::string& path,
                                          detail::VtkMessageCapture& capture) {
   std::error_code ec;
-  if (!fs::exists(path, ec)) throw MeshError(path, "no such file");
-  if (fs::is_directory(path, ec)) throw MeshError(path, "is a directory, not a mesh file");
-  if (!std::ifstream(path, std::ios::binary)) throw MeshError(path, "cannot open file");
-  if (fs::file_size(path, ec) == 0) throw MeshError(path, "empty file");
+  if (!fs::exists(path, ec)) throw FileError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw FileError(path, "is a directory, not a mesh file");
+  if (!std::ifstream(path, std::ios::binary)) throw FileError(path, "cannot open file");
+  if (fs::file_size(path, ec) == 0) throw FileError(path, "empty file");
 
   // Cheap signature checks first: VTK's own complaint about a random file
   // echoes its bytes back.
@@ -73,10 +73,10 @@ vtkSmartPointer<vtkDataSet> read_dataset(const std::string& path,
   std::transform(lower.begin(), lower.end(), lower.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   if (legacy && lower != "# vtk datafile")  // VTK compares case-insensitively too
-    throw MeshError(path, "not a legacy VTK file (no '# vtk DataFile' header)");
+    throw FileError(path, "not a legacy VTK file (no '# vtk DataFile' header)");
   const auto first = head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");  // BOM too
   if (!legacy && (first == std::string::npos || head[first] != '<'))
-    throw MeshError(path, "not a VTK XML file");
+    throw FileError(path, "not a VTK XML file");
 
   vtkSmartPointer<vtkDataObject> out;
   if (legacy) {
@@ -101,17 +101,17 @@ vtkSmartPointer<vtkDataSet> read_dataset(const std::string& path,
     r->Update();
     out = r->GetOutput();
   }
-  if (capture.has_error()) throw MeshError(path, "VTK reader: " + capture.first_error());
+  if (capture.has_error()) throw FileError(path, "VTK reader: " + capture.first_error());
   // The legacy reader only warns on short data and keeps what it read.
   const std::string warning = capture.first_warning();
-  if (!warning.empty()) throw MeshError(path, "VTK reader: " + warning);
-  if (!out) throw MeshError(path, "not a readable VTK file");
+  if (!warning.empty()) throw FileError(path, "VTK reader: " + warning);
+  if (!out) throw FileError(path, "not a readable VTK file");
   auto* ds = vtkDataSet::SafeDownCast(out);
   if (!ds)
-    throw MeshError(path, std::string("unsupported VTK data type ") + out->GetClassName() +
+    throw FileError(path, std::string("unsupported VTK data type ") + out->GetClassName() +
                               " (expected a single dataset)");
   if (ds->GetNumberOfPoints() == 0 || ds->GetNumberOfCells() == 0)
-    throw MeshError(path, "no cells (empty or unreadable VTK file)");
+    throw FileError(path, "no cells (empty or unreadable VTK file)");
   return ds;
 }
 
@@ -158,7 +158,7 @@ vtkSmartPointer<vtkDataArray> cell_to_point(vtkDataSet* ds, const std::string& n
   vtkDataArray* a =
       c2p->GetOutput() ? c2p->GetOutput()->GetPointData()->GetArray(name.c_str()) : nullptr;
   if (!a || capture.has_error())
-    throw MeshError(path, "cannot average cell data '" + name + "' onto points" +
+    throw FileError(path, "cannot average cell data '" + name + "' onto points" +
                               (capture.has_error() ? ": " + capture.first_error() : ""));
   return a;
 }
@@ -175,7 +175,7 @@ std::vector<double> pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const st
       pa = nullptr;
       ca = ds->GetCellData()->GetArray(opt.scalar.c_str());
       if (!usable(ca))
-        throw MeshError(path, "no array named '" + opt.scalar + "'; available: " + array_list(ds));
+        throw FileError(path, "no array named '" + opt.scalar + "'; available: " + array_list(ds));
     }
   } else {
     pa = first_usable(ds->GetPointData());
@@ -282,9 +282,9 @@ void triangulate(vtkDataSet* in, std::vector<Tet>& tets, const std::string& path
   vtkUnstructuredGrid* out = tf->GetOutput();
   in->GetPointData()->RemoveArray("zs_original_id");
   if (capture.has_error() || !out)
-    throw MeshError(path, "cannot split cells into tets: " + capture.first_error());
+    throw FileError(path, "cannot split cells into tets: " + capture.first_error());
   auto* back = vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("zs_original_id"));
-  if (!back) throw MeshError(path, "cannot split cells into tets: point ids lost");
+  if (!back) throw FileError(path, "cannot split cells into tets: point ids lost");
   auto idlist = vtkSmartPointer<vtkIdList>::New();
   for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c) {
     if (out->GetCellType(c) != VTK_TETRA) continue;
@@ -330,20 +330,20 @@ std::vector<Tet> tets_of_cells(vtkDataSet* ds, TetMesh& m, const std::string& pa
     ds->GetCellPoints(c, idl);
     for (vtkIdType k = 0; k < idl->GetNumberOfIds(); ++k)
       if (idl->GetId(k) < 0 || idl->GetId(k) >= npts)
-        throw MeshError(path, "cell " + std::to_string(c) + " references point " +
+        throw FileError(path, "cell " + std::to_string(c) + " references point " +
                                   std::to_string(idl->GetId(k)) + " of " + std::to_string(npts));
     auto [lt, nc] = corner_cell(type);
     int linear = type;
     if (lt >= 0) {
       if (idl->GetNumberOfIds() < nc)
-        throw MeshError(path, "cell " + std::to_string(c) + " has too few points");
+        throw FileError(path, "cell " + std::to_string(c) + " has too few points");
       idl->SetNumberOfIds(nc);
       linear = lt;
       ++reduced[type];
     }
     if (linear == VTK_TETRA) {
       if (idl->GetNumberOfIds() != 4)
-        throw MeshError(path, "tetra " + std::to_string(c) + " without 4 points");
+        throw FileError(path, "tetra " + std::to_string(c) + " without 4 points");
       tets.push_back({static_cast<uint32_t>(idl->GetId(0)), static_cast<uint32_t>(idl->GetId(1)),
                       static_cast<uint32_t>(idl->GetId(2)), static_cast<uint32_t>(idl->GetId(3))});
       continue;
@@ -385,7 +385,7 @@ std::vector<Tet> tets_of_structured(vtkDataSet* ds, TetMesh& m, const std::strin
   else if (auto* rg = vtkRectilinearGrid::SafeDownCast(ds))
     rg->GetDimensions(dims);
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
-    throw MeshError(path, "no 3-D cells (structured grid " + std::to_string(dims[0]) + "x" +
+    throw FileError(path, "no 3-D cells (structured grid " + std::to_string(dims[0]) + "x" +
                               std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + ")");
   vtkSmartPointer<vtkDataSet> copy;
   copy.TakeReference(ds->NewInstance());
@@ -406,14 +406,14 @@ TetMesh read_vtk(const std::string& path, const ReadOptions& opt) {
   vtkSmartPointer<vtkDataSet> ds = read_dataset(path, capture);
 
   if (ds->GetNumberOfPoints() >= static_cast<vtkIdType>(UINT32_MAX))
-    throw MeshError(path, "too many points for 32-bit tet indices");
+    throw FileError(path, "too many points for 32-bit tet indices");
   TetMesh m;
   std::vector<double> scal = pick_scalar(ds, opt, path, m, capture);
   const bool structured = vtkImageData::SafeDownCast(ds) || vtkStructuredGrid::SafeDownCast(ds) ||
                           vtkRectilinearGrid::SafeDownCast(ds);
   std::vector<Tet> tets =
       structured ? tets_of_structured(ds, m, path, capture) : tets_of_cells(ds, m, path, capture);
-  if (tets.empty()) throw MeshError(path, "no 3-D cells to make tets from");
+  if (tets.empty()) throw FileError(path, "no 3-D cells to make tets from");
 
   // Keep only points some tet uses (e.g. quadratic mid-edge nodes go).
   const auto n = static_cast<size_t>(ds->GetNumberOfPoints());

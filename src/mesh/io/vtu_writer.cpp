@@ -13,14 +13,14 @@
 
 #include "mesh/io/vtk_capture.h"
 #include "mesh/io/vtk_io.h"
-#include "mesh/mesh_error.h"
+#include "util/file_error.h"
 
 namespace zs {
 
 void write_vtu(const std::string& path, const TetMesh& m) {
   detail::VtkMessageCapture capture;
   if (!m.scalars.empty() && m.scalars.size() != m.points.size())
-    throw MeshError(path, "cannot write: " + std::to_string(m.scalars.size()) + " scalars for " +
+    throw FileError(path, "cannot write: " + std::to_string(m.scalars.size()) + " scalars for " +
                               std::to_string(m.points.size()) + " points");
 
   // Double points so a write/read round trip is bit-exact.
@@ -39,7 +39,7 @@ void write_vtu(const std::string& path, const TetMesh& m) {
     offsets->SetValue(static_cast<vtkIdType>(t), static_cast<vtkIdType>(4 * t));
     for (int k = 0; k < 4; ++k) {
       if (m.tets[t][k] >= m.points.size())
-        throw MeshError(path, "cannot write: tet " + std::to_string(t) + " references point " +
+        throw FileError(path, "cannot write: tet " + std::to_string(t) + " references point " +
                                   std::to_string(m.tets[t][k]) + " (only " +
                                   std::to_string(m.points.size()) + " points)");
       conn->SetValue(static_cast<vtkIdType>(4 * t + k), m.tets[t][k]);
@@ -75,7 +75,7 @@ void write_vtu(const std::string& path, const TetMesh& m) {
     std::string why = capture.first_error();
     std::error_code ec;
     std::filesystem::remove(path, ec);  // never leave a partial file
-    throw MeshError(path, "cannot write VTU file" + (why.empty() ? std::string() : ": " + why));
+    throw FileError(path, "cannot write VTU file" + (why.empty() ? std::string() : ": " + why));
   }
 }
 

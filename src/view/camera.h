@@ -48,6 +48,16 @@ class View {
   uint32_t height() const { return h_; }
   const glm::dvec3& eye() const { return eye_; }
   const glm::dvec3& forward() const { return f_; }
+  const glm::dvec3& right() const { return r_; }
+  const glm::dvec3& up() const { return u_; }
+  // The screen mapping X = sx·a + ox, Y = oy − sy·b, where (a, b) are the
+  // camera-plane coordinates along r and u (orthographic: world units from
+  // the eye; perspective: a = x/z, b = y/z). Renderers that work in camera
+  // space (sphere spans) need it; project() applies it.
+  double scale_x() const { return sx_; }
+  double scale_y() const { return sy_; }
+  double offset_x() const { return ox_; }
+  double offset_y() const { return oy_; }
 
  private:
   bool persp_;

@@ -7,11 +7,11 @@
 
 namespace zs {
 
-class MeshError : public std::runtime_error {
+class FileError : public std::runtime_error {
  public:
-  MeshError(const std::string& file, const std::string& what)
+  FileError(const std::string& file, const std::string& what)
       : std::runtime_error(file + ": " + what) {}
-  MeshError(const std::string& file, size_t line, const std::string& what)
+  FileError(const std::string& file, size_t line, const std::string& what)
       : std::runtime_error(file + ":" + std::to_string(line) + ": " + what) {}
 };
 

@@ -1,4 +1,4 @@
-#include "scene/camera.h"
+#include "view/camera.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "volume/transfer_function.h"
+#include "optics/transfer_function.h"
 
 #include <algorithm>
 #include <cmath>
