@@ -1,4 +1,5 @@
 #include "bench/scan_bench.h"
+#include "util/memory.h"
 
 #include <algorithm>
 #include <cmath>

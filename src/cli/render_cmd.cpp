@@ -21,6 +21,7 @@
 #include "view/camera.h"
 #include "scene/scene.h"
 #include "util/atomic_file.h"
+#include "util/memory.h"
 #include "volume/segment_batch.h"
 #include "volume/zsweep_renderer.h"
 
@@ -126,7 +127,26 @@ void warn_if_empty(const SceneInput& in, const RenderStats& st, const std::strin
 // Renders `frames - 1` untimed-for-output frames before the written one, each
 // a whole frame (setup included), as a viewer re-rendering a new view would:
 // benchmarks time steady-state frames in one process (no loader, no cold
-// page faults) and report the best.
+// page faults) and report the best. `make` builds a renderer (its setup is
+// part of the frame), `total_ms` reads a finished frame's time.
+template <class R, class Make, class Total>
+std::unique_ptr<R> render_frames(int frames, ImageTileWriter& writer, const Make& make, const Total& total_ms,
+                                 std::vector<double>* frame_ms) {
+  struct Discard : TileSink {
+    void tile(const TileRect&, const float*) override {}
+  } discard;
+  for (int f = 1; f < frames; ++f) {
+    std::unique_ptr<R> r = make();
+    r->render_tiles(discard, nullptr);
+    frame_ms->push_back(total_ms(*r));
+  }
+  std::unique_ptr<R> r = make();
+  r->render_tiles(writer, nullptr);
+  writer.commit();
+  frame_ms->push_back(total_ms(*r));
+  return r;
+}
+
 void run(const SceneArgs& a, const std::string& out_path, const std::string& stats_path, int frames,
          const std::string& compression) {
   using Clock = std::chrono::steady_clock;
@@ -138,25 +158,30 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
   const auto t1 = Clock::now();
   const Topology topo = build_topology(in.mesh);
   const auto t2 = Clock::now();
+  const double ms_topology = std::chrono::duration<double, std::milli>(t2 - t1).count();
+  const TileGrid grid{rs.width, rs.height, rs.tile_size};
   // The budget before the output opens: the file library allocates its tile
   // tables then (2 GiB for a 1048576² EXR), and an image the format cannot
   // hold is refused here too.
-  check_memory_budget(in.mesh, topo, rs,
-                      ImageTileWriter::buffer_bytes_estimate(out_path, TileGrid{rs.width, rs.height, rs.tile_size}));
+  check_memory_budget(in.mesh, topo, rs, ImageTileWriter::buffer_bytes_estimate(out_path, grid));
   // ---- MPI: `render --mpi` (src/cli/render_mpi.h). Every rank sweeps a share
   // of the tiles into rank 0's writer; rank 0 alone writes and prints. ----
   if (render_mpi_enabled()) {
     std::unique_ptr<ImageTileWriter> w;
-    if (render_mpi_rank() == 0)
-      w = std::make_unique<ImageTileWriter>(out_path, TileGrid{rs.width, rs.height, rs.tile_size}, compression);
-    RenderStats st;
-    render_mpi(in.mesh, topo, rs, w.get(), w ? w->buffer_bytes_estimate() : 0, &st);
+    if (render_mpi_rank() == 0) w = std::make_unique<ImageTileWriter>(out_path, grid, compression);
+    RenderSettings quiet = rs;  // outlives the renderer, which keeps a reference
+    quiet.progress = false;
+    ZSweepRenderer r(in.mesh, topo, quiet,
+                     (w ? w->buffer_bytes_estimate() : 0) + render_mpi_message_bytes(grid, quiet.threads));
+    MpiReport report;
+    render_mpi(r, w.get(), &report);
     if (!w) return;
     w->commit();
+    RenderStats st = r.stats();
+    st.ms_total = st.ms_setup + report.wall_ms;
+    for (uint64_t p : report.peak_rss) st.peak_rss_bytes = std::max(st.peak_rss_bytes, p);
     warn_if_empty(in, st, out_path);
-    if (!stats_path.empty())
-      write_stats(stats_path, st, in.scene, in.mesh, in.ms_load,
-                  std::chrono::duration<double, std::milli>(t2 - t1).count());
+    if (!stats_path.empty()) write_stats(stats_path, st, in.scene, in.mesh, in.ms_load, ms_topology);
     std::printf("wrote %s: %ux%u, %llu fragments, %llu rendered pixels, %.1f ms\n", out_path.c_str(), rs.width,
                 rs.height, (unsigned long long)st.fragments, (unsigned long long)st.rendered_pixels, st.ms_total);
     return;
@@ -167,29 +192,16 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
   // bands) and stills larger than memory work. The writer opens first, so an
   // unwritable path fails before the render, and its buffers count against
   // the budget; nothing appears under out_path unless commit() succeeds.
-  ImageTileWriter writer(out_path, TileGrid{rs.width, rs.height, rs.tile_size}, compression);
-  struct Discard : TileSink {
-    void tile(const TileRect&, const float*) override {}
-  } discard;
+  ImageTileWriter writer(out_path, grid, compression);
   std::vector<double> frame_ms;
-  for (int f = 1; f < frames; ++f) {
-    ZSweepRenderer r(in.mesh, topo, rs, writer.buffer_bytes_estimate());
-    RenderStats s = r.setup_stats();
-    s.ms_total = s.ms_setup;
-    r.render_tiles(discard, nullptr, &s);
-    frame_ms.push_back(s.ms_total);
-  }
-  ZSweepRenderer renderer(in.mesh, topo, rs, writer.buffer_bytes_estimate());
-  RenderStats stats = renderer.setup_stats();
-  stats.ms_total = stats.ms_setup;
-  renderer.render_tiles(writer, nullptr, &stats);
-  writer.commit();
+  auto renderer = render_frames<ZSweepRenderer>(
+      frames, writer, [&] { return std::make_unique<ZSweepRenderer>(in.mesh, topo, rs, writer.buffer_bytes_estimate()); },
+      [](const ZSweepRenderer& r) { return r.stats().ms_total; }, &frame_ms);
+  RenderStats stats = renderer->stats();
+  stats.peak_rss_bytes = std::max(stats.peak_rss_bytes, peak_rss_bytes());
   warn_if_empty(in, stats, out_path);
-  frame_ms.push_back(stats.ms_total);
   if (frames > 1) stats.ms_total = *std::min_element(frame_ms.begin(), frame_ms.end());
-  if (!stats_path.empty())
-    write_stats(stats_path, stats, in.scene, in.mesh, in.ms_load,
-                std::chrono::duration<double, std::milli>(t2 - t1).count(), frame_ms);
+  if (!stats_path.empty()) write_stats(stats_path, stats, in.scene, in.mesh, in.ms_load, ms_topology, frame_ms);
   std::printf("wrote %s: %ux%u, %llu fragments, %llu rendered pixels, %.1f ms\n", out_path.c_str(), rs.width,
               rs.height, (unsigned long long)stats.fragments, (unsigned long long)stats.rendered_pixels,
               stats.ms_total);

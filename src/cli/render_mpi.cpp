@@ -32,16 +32,14 @@ void add_render_mpi_options(CLI::App& cmd) {
 bool render_mpi_enabled() { return g_enabled; }
 int render_mpi_rank() { return g_enabled ? g_ctx.rank : 0; }
 
-void render_mpi(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings, TileSink* sink,
-                uint64_t sink_bytes, RenderStats* stats) {
+uint64_t render_mpi_message_bytes(const TileGrid& grid, int threads) { return mpi_message_bytes(grid, threads); }
+
+void render_mpi(TiledRenderer& r, TileSink* sink, MpiReport* report) {
   MpiSchedule schedule = MpiSchedule::Dynamic;
   parse_mpi_schedule(g_schedule, &schedule);  // checked by the option
-  RenderSettings rs = settings;  // outlives the renderer, which keeps a reference
-  rs.progress = false;
-  const TileGrid grid{rs.width, rs.height, rs.tile_size};
-  ZSweepRenderer r(mesh, topo, rs, sink_bytes + mpi_message_bytes(grid, rs.threads));
-  MpiReport rep;
-  render_zsweep_mpi(r, rs.threads, sink, schedule, stats, &rep);
+  MpiReport local;
+  MpiReport& rep = report ? *report : local;
+  render_mpi_tiles(r, sink, schedule, &rep);
   if (g_ctx.rank != 0) return;
   std::string tiles, ms, cpu;
   for (int k = 0; k < g_ctx.size; ++k) {
@@ -55,7 +53,7 @@ void render_mpi(const TetMesh& mesh, const Topology& topo, const RenderSettings&
     cpu += buf;
   }
   std::printf("mpi: %d rank(s) x %d thread(s), %s schedule: tiles %s, sweeping ms %s, cpu ms %s, %.1f ms wall\n",
-              g_ctx.size, rs.threads, to_string(schedule), tiles.c_str(), ms.c_str(), cpu.c_str(), rep.wall_ms);
+              g_ctx.size, r.threads(), to_string(schedule), tiles.c_str(), ms.c_str(), cpu.c_str(), rep.wall_ms);
 }
 
 }  // namespace zs

@@ -10,10 +10,8 @@
 
 #include <cstdint>
 
-#include "mesh/tet_mesh.h"
-#include "mesh/topology.h"
-#include "volume/render_settings.h"
-#include "volume/zsweep_renderer.h"
+#include "mpi/mpi_render.h"
+#include "raster/tiled_renderer.h"
 
 namespace CLI {
 class App;
@@ -27,12 +25,14 @@ void add_render_mpi_options(CLI::App& render);
 bool render_mpi_enabled();
 // This process's rank (0 without --mpi): only rank 0 writes anything.
 int render_mpi_rank();
-// Sweeps every tile across the ranks: into `sink` on rank 0 (null on the
-// others; `sink_bytes` is what it holds). Builds this rank's renderer from
-// `rs` without the progress bar (it would show one rank's runs only). On
-// rank 0 fills `stats` as a single-process render does and prints one line
-// with the per-rank split.
-void render_mpi(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs, TileSink* sink,
-                uint64_t sink_bytes, RenderStats* stats);
+// What a renderer built for an MPI render must count against its budget
+// besides the sink: the tile messages one rank holds at most.
+uint64_t render_mpi_message_bytes(const TileGrid& grid, int threads);
+// Renders every tile across the ranks with `r` (built on every rank from the
+// same scene, without a progress bar: it would show one rank's runs only):
+// into `sink` on rank 0 (null on the others). On rank 0 the renderer's tile
+// totals are every rank's summed, `report` gets the per-rank split, and one
+// line with that split is printed.
+void render_mpi(TiledRenderer& r, TileSink* sink, MpiReport* report);
 
 }  // namespace zs

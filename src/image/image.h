@@ -1,20 +1,13 @@
-// A float RGBA image, premultiplied, linear; row 0 at the top.
+// Reading and writing float RGBA images (raster/image.h) through OpenImageIO.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace zs {
+#include "raster/image.h"
 
-struct Image {
-  uint32_t width = 0, height = 0;
-  std::vector<float> rgba;  // 4 floats per pixel
-  Image() = default;
-  Image(uint32_t w, uint32_t h) : width(w), height(h), rgba(size_t(w) * h * 4, 0.f) {}
-  float* at(uint32_t x, uint32_t y) { return &rgba[(size_t(y) * width + x) * 4]; }
-  const float* at(uint32_t x, uint32_t y) const { return &rgba[(size_t(y) * width + x) * 4]; }
-};
+namespace zs {
 
 // Writes PNG (8-bit, the same values, no gamma), EXR or TIFF (float) through
 // OpenImageIO, to a temporary name renamed on success. Throws std::runtime_error

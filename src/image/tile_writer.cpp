@@ -45,7 +45,8 @@ struct Layout {
   bool is_float = false;
   bool tiled = false;         // the file is tiled (tiles or whole bands of tiles go in)
   bool random_order = false;  // tiles go to disk as they arrive
-  uint64_t pixel_bytes() const { return is_float ? 16 : 4; }
+  uint32_t channels = 4;      // in the file: the grid's for float formats (Z too), RGBA for 8-bit
+  uint64_t pixel_bytes() const { return is_float ? 4 * channels : 4; }
 };
 
 Layout layout_for(OIIO::ImageOutput& file, const std::string& path, const TileGrid& grid) {
@@ -54,6 +55,7 @@ Layout layout_for(OIIO::ImageOutput& file, const std::string& path, const TileGr
   L.fmt = file.format_name();
   // The formats and attributes write_image() uses, so both store the same values.
   L.is_float = L.fmt == "openexr" || L.fmt == "tiff";
+  L.channels = L.is_float ? grid.channels : 4;
   if (L.fmt == "png" && (grid.width > kPngMaxSide || grid.height > kPngMaxSide))
     throw std::runtime_error(path + ": PNG is limited to " + std::to_string(kPngMaxSide) +
                              " pixels per side (libpng); write .exr or .tif");
@@ -73,7 +75,7 @@ uint64_t estimate_bytes(const Layout& L, const TileGrid& grid) {
   uint64_t bytes = n / 8 + 1 + n * 16;
   if (L.random_order) {
     // The library's padded copy of a tile and its compression scratch.
-    bytes += 4 * uint64_t(grid.size) * grid.size * 16;
+    bytes += 4 * uint64_t(grid.size) * grid.size * L.pixel_bytes();
   } else {
     // Tiles arrive roughly row-major from a few threads: the band being
     // filled, the next one, and one of slack for a slow tile.
@@ -159,7 +161,7 @@ class CheckedFile : public OIIO::Filesystem::IOProxy {
 struct ImageTileWriter::Impl {
   // A row of tiles being assembled for an in-order format.
   struct Band {
-    std::vector<uint8_t> data;  // width·rows pixels of 4 channels, row-major
+    std::vector<uint8_t> data;  // width·rows pixels of layout.channels, row-major
     uint32_t tiles_left = 0;
   };
 
@@ -190,7 +192,13 @@ struct ImageTileWriter::Impl {
     layout = layout_for(*file, path, grid);
     const std::string& fmt = layout.fmt;
     const bool is_float = layout.is_float, tiled = layout.tiled;
-    OIIO::ImageSpec spec(int(grid.width), int(grid.height), 4, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    OIIO::ImageSpec spec(int(grid.width), int(grid.height), int(layout.channels),
+                         is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    if (layout.channels == 5) {
+      // The view depth of the nearest surface, as EXR's depth channel.
+      spec.channelnames = {"R", "G", "B", "A", "Z"};
+      spec.z_channel = 4;
+    }
     spec.attribute("oiio:ColorSpace", "Linear");
     spec.attribute("oiio:UnassociatedAlpha", 1);
     const std::string comp = output_compression(fmt, compression, path);
@@ -202,7 +210,7 @@ struct ImageTileWriter::Impl {
       // until the ones before it arrive.
       if (fmt == "openexr") spec.attribute("openexr:lineOrder", "randomY");
     }
-    if (fmt == "tiff" && uint64_t(grid.width) * grid.height * 16 >= kBigTiffBytes) spec.attribute("tiff:bigtiff", 1);
+    if (fmt == "tiff" && uint64_t(grid.width) * grid.height * layout.pixel_bytes() >= kBigTiffBytes) spec.attribute("tiff:bigtiff", 1);
     if (!is_float && file->supports("ioproxy")) {
       proxy = std::make_unique<CheckedFile>(out.temp_path());
       if (proxy->open_error()) throw std::runtime_error(path + ": cannot write: " + std::strerror(proxy->open_error()));
@@ -266,15 +274,16 @@ struct ImageTileWriter::Impl {
       it = bands.emplace(row, std::move(b)).first;
     }
     Band& b = it->second;
-    const size_t w = r.width();
+    const size_t w = r.width(), gc = grid.channels;
     for (uint32_t y = 0; y < r.height(); ++y) {
-      const float* src = rgba + size_t(y) * w * 4;
-      const size_t dst = (size_t(y) * grid.width + r.x0) * 4;
+      const float* src = rgba + size_t(y) * w * gc;
+      const size_t dst = size_t(y) * grid.width + r.x0;  // in pixels
       if (layout.is_float) {
-        std::memcpy(b.data.data() + dst * 4, src, w * 16);
+        std::memcpy(b.data.data() + dst * pixel_bytes(), src, w * pixel_bytes());
       } else {
-        uint8_t* d = b.data.data() + dst;
-        for (size_t i = 0; i < w * 4; ++i) d[i] = quantize(src[i]);
+        uint8_t* d = b.data.data() + dst * 4;
+        for (size_t i = 0; i < w; ++i)
+          for (size_t k = 0; k < 4; ++k) d[i * 4 + k] = quantize(src[i * gc + k]);
       }
     }
     --b.tiles_left;

@@ -17,7 +17,7 @@
 #include <memory>
 #include <string>
 
-#include "volume/zsweep_renderer.h"
+#include "raster/tile_sink.h"
 
 namespace zs {
 

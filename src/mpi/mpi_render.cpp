@@ -15,6 +15,8 @@
 
 #include <mpi.h>
 
+#include "util/memory.h"
+
 namespace zs {
 
 const char* to_string(MpiSchedule s) { return s == MpiSchedule::Static ? "static" : "dynamic"; }
@@ -42,16 +44,12 @@ struct Plan {
   uint32_t width = 0, height = 0, size = 0, count = 0;
 };
 
-uint32_t tile_of(const TileGrid& g, const TileRect& r) { return (r.y0 / g.size) * g.cols() + r.x0 / g.size; }
-
-uint64_t tile_floats(const TileGrid& g, uint32_t t) {
-  const TileRect r = g.rect(t);
-  return uint64_t(r.width()) * r.height() * 4;
-}
+uint32_t tile_of(const TileGrid& g, const TileRect& r) { return g.tile_of(r); }
+uint64_t tile_floats(const TileGrid& g, uint32_t t) { return g.tile_floats(t); }
 
 // The most tiles one message may carry.
 uint32_t max_chunk(const TileGrid& g) {
-  const uint64_t tile_bytes = uint64_t(g.size) * g.size * 16;
+  const uint64_t tile_bytes = uint64_t(g.size) * g.size * g.channels * 4;
   return uint32_t(std::clamp<uint64_t>(kMaxChunkBytes / tile_bytes, 1, g.count()));
 }
 // The smallest run worth a render call: two tiles per thread, so the
@@ -76,7 +74,7 @@ class Chunk : public TileSink {
   // Tiles arrive in any order; the header records the order they came in.
   void tile(const TileRect& r, const float* rgba) override {
     set_word(header_++, tile_of(grid_, r));
-    const size_t n = size_t(r.width()) * r.height() * 4;
+    const size_t n = size_t(r.width()) * r.height() * grid_.channels;
     std::memcpy(&words_[cursor_], rgba, n * sizeof(float));
     cursor_ += n;
   }
@@ -96,7 +94,7 @@ uint32_t max_run(const TileGrid& g, int threads) { return std::min(16 * min_chun
 
 // What every rank sends rank 0 at the end.
 struct RankResult {
-  RenderStats stats;  // per-tile parts of this rank's render_tiles calls
+  double render_ms = 0;  // wall time of this rank's render_tiles calls
   uint64_t tiles = 0, peak_rss = 0;
   double cpu_ms = 0;  // every thread of the rank, over the distributed phase
 };
@@ -130,8 +128,8 @@ class LockedSink : public TileSink {
 // waits for the end of the sweep (MPI progresses only inside MPI calls).
 class Session {
  public:
-  Session(ZSweepRenderer& r, int threads, TileSink* sink, const MpiContext& ctx)
-      : r_(r), grid_(r.grid()), threads_(std::max(1, threads)), sink_(sink), ctx_(ctx) {
+  Session(TiledRenderer& r, TileSink* sink, const MpiContext& ctx)
+      : r_(r), grid_(r.grid()), threads_(std::max(1, r.threads())), sink_(sink), ctx_(ctx) {
     // Test hook (tests/cli/mpi.sh): this rank fails in its first run, to
     // show that a failure mid-render ends every rank instead of hanging them.
     const char* f = std::getenv("ZSWEEP_MPI_FAIL_RANK");
@@ -148,7 +146,7 @@ class Session {
       mpi_abort_with(e.what());
     }
   }
-  RankResult result() const { return RankResult{local_, tiles_, peak_rss_bytes(), cpu_ms() - cpu0_}; }
+  RankResult result() const { return RankResult{render_ms_, tiles_, peak_rss_bytes(), cpu_ms() - cpu0_}; }
 
  private:
   // --- the render thread: one run at a time.
@@ -156,7 +154,11 @@ class Session {
     if (fail_) throw std::runtime_error("failure injected by ZSWEEP_MPI_FAIL_RANK");
     tiles_ += ids.size();
     running_ = std::move(ids);
-    job_ = std::async(std::launch::async, [this, &sink] { r_.render_tiles(sink, &running_, &local_); });
+    job_ = std::async(std::launch::async, [this, &sink] {
+      const auto t0 = Clock::now();
+      r_.render_tiles(sink, &running_);
+      render_ms_ += ms_since(t0);
+    });
   }
   bool busy() const { return job_.valid(); }
   // Waits up to one poll interval for the run; true (and rethrows its
@@ -347,14 +349,14 @@ class Session {
   }
 
   static constexpr std::chrono::microseconds kPoll{200};
-  ZSweepRenderer& r_;
+  TiledRenderer& r_;
   const TileGrid& grid_;
   const int threads_;
   TileSink* sink_;
   const MpiContext ctx_;
   bool fail_ = false;
   const double cpu0_ = cpu_ms();
-  RenderStats local_;  // written by the render thread, read once it is joined
+  double render_ms_ = 0;  // written by the render thread, read once it is joined
   uint64_t tiles_ = 0;
   std::vector<uint32_t> running_;  // the run the render thread sweeps
   std::future<void> job_;
@@ -385,34 +387,34 @@ void check_same_grid(const TileGrid& g, const MpiContext& ctx) {
 }  // namespace
 
 uint64_t mpi_message_bytes(const TileGrid& g, int threads) {
-  return 2 * uint64_t(max_run(g, std::max(1, threads))) * g.size * g.size * 16;
+  return 2 * uint64_t(max_run(g, std::max(1, threads))) * g.size * g.size * g.channels * 4;
 }
 
-void render_zsweep_mpi(ZSweepRenderer& r, int threads, TileSink* sink, MpiSchedule schedule, RenderStats* stats,
-                       MpiReport* report) {
+void render_mpi_tiles(TiledRenderer& r, TileSink* sink, MpiSchedule schedule, MpiReport* report) {
   const MpiContext ctx = mpi_context();
-  if (ctx.rank == 0 && !sink) throw std::runtime_error("render_zsweep_mpi: rank 0 needs a sink");
+  if (ctx.rank == 0 && !sink) throw std::runtime_error("render_mpi_tiles: rank 0 needs a sink");
   mpi_vote_setup();
   check_same_grid(r.grid(), ctx);
   const auto t0 = Clock::now();
   std::vector<RankResult> all(ctx.rank == 0 ? size_t(ctx.size) : 0);
+  std::vector<uint8_t> totals;
   {
-    Session s(r, threads, sink, ctx);
+    Session s(r, sink, ctx);
     s.run(schedule);  // aborts every rank on a failure
     const RankResult mine = s.result();
     MPI_Gather(&mine, sizeof mine, MPI_BYTE, all.data(), sizeof mine, MPI_BYTE, 0, MPI_COMM_WORLD);
+    // Every rank runs the same renderer kind, so the totals have one size.
+    const std::vector<uint8_t> my_totals = r.tile_totals();
+    totals.resize(ctx.rank == 0 ? my_totals.size() * size_t(ctx.size) : 0);
+    MPI_Gather(my_totals.data(), int(my_totals.size()), MPI_BYTE, totals.data(), int(my_totals.size()), MPI_BYTE, 0,
+               MPI_COMM_WORLD);
   }
   mpi_leave_distributed();
   if (ctx.rank != 0) return;
   const double wall = ms_since(t0);
-  if (stats) {
-    *stats = r.setup_stats();
-    stats->ms_total = stats->ms_setup + wall;
-    for (const RankResult& rr : all) {
-      add_stats(*stats, rr.stats);
-      stats->peak_rss_bytes = std::max(stats->peak_rss_bytes, rr.peak_rss);
-    }
-  }
+  const size_t n = totals.size() / size_t(ctx.size);
+  for (int k = 1; k < ctx.size; ++k)
+    r.add_tile_totals(std::vector<uint8_t>(totals.begin() + ptrdiff_t(k * n), totals.begin() + ptrdiff_t((k + 1) * n)));
   if (report) {
     report->wall_ms = wall;
     report->tiles.clear();
@@ -421,7 +423,7 @@ void render_zsweep_mpi(ZSweepRenderer& r, int threads, TileSink* sink, MpiSchedu
     report->cpu_ms.clear();
     for (const RankResult& rr : all) {
       report->tiles.push_back(rr.tiles);
-      report->render_ms.push_back(rr.stats.ms_total);  // render_tiles adds each call's wall time here
+      report->render_ms.push_back(rr.render_ms);
       report->peak_rss.push_back(rr.peak_rss);
       report->cpu_ms.push_back(rr.cpu_ms);
     }

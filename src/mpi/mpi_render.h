@@ -1,6 +1,6 @@
-// Sort-first rendering over MPI ranks (docs/scaling.md). Every rank has
-// loaded the same scene and prepared its own ZSweepRenderer over the whole
-// mesh; the screen tiles are dealt out to the ranks, each rank sweeps its
+// Sort-first rendering over MPI ranks (docs/scaling.md), for any renderer
+// (raster/tiled_renderer.h). Every rank has loaded the same scene and
+// prepared its own renderer over the whole scene; the screen tiles are dealt out to the ranks, each rank sweeps its
 // tiles on its own threads and sends them to rank 0, which hands each to its
 // sink as it arrives. A tile's pixels do not depend on which rank or thread
 // swept it, so the image is bit-identical to a single-process render.
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "mpi/mpi_env.h"
-#include "volume/zsweep_renderer.h"
+#include "raster/tiled_renderer.h"
 
 namespace zs {
 
@@ -32,15 +32,14 @@ struct MpiReport {
 };
 
 // Collective: every rank of MPI_COMM_WORLD calls it with a renderer prepared
-// from the same scene and settings; `threads` is that renderer's
-// settings.threads (runs of tiles are sized by it). `sink` is used on rank 0 only (pass null
-// elsewhere). Starts with the setup vote (mpi_env.h) and checks that all
-// ranks cut the same tile grid. On rank 0 `stats` gets rank 0's setup counts,
-// every rank's per-tile counts summed, the max of the ranks' peak memory,
-// and ms_total = setup + the distributed phase; `report` the per-rank split.
-// A failure on any rank during the render aborts every rank (mpi_env.h).
-void render_zsweep_mpi(ZSweepRenderer& r, int threads, TileSink* sink, MpiSchedule schedule, RenderStats* stats,
-                       MpiReport* report = nullptr);
+// from the same scene and settings (runs of tiles are sized by its
+// threads()). `sink` is used on rank 0 only (pass null elsewhere). Starts
+// with the setup vote (mpi_env.h) and checks that all ranks cut the same tile
+// grid. On rank 0 the renderer's tile totals end up as every rank's summed
+// (add_tile_totals), and `report` gets the per-rank split and the wall time
+// of the distributed phase. A failure on any rank during the render aborts
+// every rank (mpi_env.h).
+void render_mpi_tiles(TiledRenderer& r, TileSink* sink, MpiSchedule schedule, MpiReport* report = nullptr);
 
 // What one rank holds in tile messages at most (rank 0: one it received;
 // the others: two in flight), for the caller's memory budget.

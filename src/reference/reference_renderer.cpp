@@ -17,7 +17,7 @@
 #include "view/camera.h"
 #include "util/bytes_str.h"
 #include "volume/segment_integrator.h"
-#include "volume/zsweep_renderer.h"
+#include "util/memory.h"
 
 namespace zs {
 

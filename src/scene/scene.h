@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mesh/io/mesh_io.h"
+#include "scene/scene_defaults.h"
 #include "volume/render_settings.h"
 
 namespace zs {
@@ -22,10 +23,5 @@ struct Scene {
 Scene load_scene(const std::string& path);
 Scene parse_scene(const std::string& json_text, const std::string& name, const std::string& base_dir);
 
-// Camera looking at the mesh bounds from +z (view direction -z), y up, so the
-// whole mesh fits with a small margin.
-Camera auto_camera(const TetMesh& m, Projection projection, uint32_t width, uint32_t height);
-// Ramp over the scalar range: blue→white→red colour, opacity 0→0.6.
-TransferFunction default_transfer_function(const TetMesh& m);
 
 }  // namespace zs

@@ -14,7 +14,7 @@
 
 #include "mesh/io/off_io.h"
 #include "mesh/topology.h"
-#include "scene/scene.h"
+#include "scene/scene_defaults.h"
 #include "volume/zsweep_renderer.h"
 
 int main(int argc, char** argv) {

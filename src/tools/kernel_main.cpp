@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "mesh/io/off_io.h"
-#include "scene/scene.h"
+#include "scene/scene_defaults.h"
 #include "volume/segment_batch.h"
 
 int main(int argc, char** argv) {

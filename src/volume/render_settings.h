@@ -6,15 +6,12 @@
 #include <string>
 
 #include "raster/bconvert_scan.h"
+#include "raster/triangle_scan.h"
 #include "view/camera.h"
 #include "volume/segment_integrator.h"
 #include "optics/transfer_function.h"
 
 namespace zs {
-
-enum class ScanStrategy { BBox, BConvert, Span };
-const char* to_string(ScanStrategy s);
-bool parse_scan_strategy(const std::string& s, ScanStrategy* out);
 
 struct RenderSettings {
   uint32_t width = 512, height = 512;

@@ -7,11 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "raster/bbox_scan.h"
-#include "raster/span_scan.h"
 #include "util/bytes_str.h"
 #include "volume/compositor.h"
-#include "volume/zsweep_renderer.h"
+#include "volume/render_stats.h"
 
 namespace zs {
 
@@ -34,6 +32,9 @@ class TileSweep {
     ws.active.clear();
     ws.touched.clear();
     ws.lists.reset(max_fragments);
+    if (!ws.scanner)
+      ws.scanner = std::make_unique<TriangleScanner>(rs_.scan, rs_.bconvert_variant,
+                                                     Viewport{0, 0, int(rs_.width), int(rs_.height)});
   }
 
   // Exact integration without early termination is deferred and batched.
@@ -91,6 +92,9 @@ class TileSweep {
     S_.early_terminated_pixels += comp_.terminated_pixels();
     S_.peak_fragments = std::max<uint64_t>(S_.peak_fragments, ws_.lists.peak_fragments());
     S_.peak_overflow_fragments = std::max<uint64_t>(S_.peak_overflow_fragments, ws_.lists.peak_overflow_fragments());
+    S_.bconvert_fallbacks += ws_.scanner->take_bconvert_fallbacks();
+    const RowEndMisses re = ws_.scanner->take_row_end_misses();
+    for (int k = 0; k < 4; ++k) S_.row_end_misses[k] += re.count[k];
     finish();
   }
 
@@ -180,14 +184,7 @@ class TileSweep {
     const auto t0 = timed_ ? Clock::now() : Clock::time_point{};
     ScreenTriangle st;
     const bool ok = setup_triangle(tri, in_.view.perspective(), &st);
-    bool use_bconvert = ok && rs_.scan == ScanStrategy::BConvert;
-    // The size test is against the whole image, so B-Convert images do not
-    // depend on the tiling.
-    const Viewport image{0, 0, int(rs_.width), int(rs_.height)};
-    if (use_bconvert && !bconvert_list(tri, rs_.bconvert_variant, image, ws_.bscratch)) {
-      use_bconvert = false;
-      ++S_.bconvert_fallbacks;
-    }
+    ws_.scanner->prepare(tri, ok);
     const auto t1 = timed_ ? Clock::now() : Clock::time_point{};
     if (timed_) S_.ms_list_generation += ms_between(t0, t1);
     if (!ok) {
@@ -199,15 +196,7 @@ class TileSweep {
     FaceSpans& spans = ws_.spans;
     spans.clear();
     ScanCounters sc;
-    if (use_bconvert) {
-      RowEndMisses re;
-      bconvert_scan(st, vp_, ws_.bscratch, spans, sc, &re);
-      for (int k = 0; k < 4; ++k) S_.row_end_misses[k] += re.count[k];
-    } else if (rs_.scan == ScanStrategy::Span) {
-      scan_span(st, vp_, spans, sc);
-    } else {
-      scan_bbox(st, vp_, spans, sc);
-    }
+    ws_.scanner->scan(st, vp_, spans, sc);
     S_.pixel_tests += sc.pixel_tests;
     S_.pixel_hits += sc.pixel_hits;
     S_.pixel_misses += sc.pixel_misses;

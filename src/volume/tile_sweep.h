@@ -10,8 +10,8 @@
 #include <memory>
 #include <vector>
 
-#include "raster/bconvert_scan.h"
 #include "raster/raster_target.h"
+#include "raster/triangle_scan.h"
 #include "view/camera.h"
 #include "volume/face_classes.h"
 #include "volume/near_clip.h"
@@ -53,7 +53,7 @@ struct alignas(128) TileWorkspace {
   PixelLists lists;
   FaceSpans spans;
   FaceFragments frags;  // the benchmarks' timed path only
-  BConvertScratch bscratch;
+  std::unique_ptr<TriangleScanner> scanner;  // the render's scan strategy, with its scratch
   std::vector<float> out;  // the finished tile, RGBA
   std::unique_ptr<SegmentBatch> batch;  // exact integrator without early termination
 };

@@ -1,8 +1,5 @@
 #include "volume/zsweep_renderer.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -13,12 +10,12 @@
 #include <string>
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 
+#include "raster/image_sink.h"
+#include "raster/tile_loop.h"
+#include "util/memory.h"
 #include "util/progress.h"
 #include "volume/face_classes.h"
-#include "volume/sink_relay.h"
 #include "volume/near_clip.h"
 #include "volume/sweep_order.h"
 #include "volume/tile_bins.h"
@@ -33,11 +30,6 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 }  // namespace
-
-TileRect TileGrid::rect(uint32_t tile) const {
-  const uint32_t c = tile % cols(), r = tile / cols();
-  return {c * size, r * size, std::min(width, (c + 1) * size), std::min(height, (r + 1) * size)};
-}
 
 void add_stats(RenderStats& a, const RenderStats& b) {
   a.ms_list_generation += b.ms_list_generation;
@@ -65,26 +57,7 @@ void add_stats(RenderStats& a, const RenderStats& b) {
   a.bbox_area += b.bbox_area;
 }
 
-uint64_t default_memory_budget() {
-  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && size > 0 ? uint64_t(pages) * uint64_t(size) / 2 : (uint64_t(4) << 30);
-}
-
-uint64_t peak_rss_bytes() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return uint64_t(u.ru_maxrss) * 1024;
-}
-
 constexpr uint64_t kMinPoolFragments = 256;
-
-// Finished tiles that may wait for a busy sink (sink_relay.h): up to 16, at
-// most 64 MiB, none with one thread.
-size_t relay_queue_tiles(uint32_t tile_size, int threads) {
-  if (threads <= 1) return 0;
-  const uint64_t tile_bytes = uint64_t(tile_size) * tile_size * 16;
-  return size_t(std::max<uint64_t>(1, std::min<uint64_t>(16, (uint64_t(64) << 20) / tile_bytes)));
-}
 
 uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces) {
   // Per vertex: view position, heap entry (and its copy), rank; per face:
@@ -129,7 +102,7 @@ uint64_t check_memory_budget(const TetMesh& mesh, const Topology& topo, const Re
   // Vertices and faces, the sink, the relay's queue and the bins' per-tile
   // offsets; the bins' entries are known only later (one per face here).
   const uint64_t shared = zsweep_shared_bytes(mesh.num_points(), topo.num_faces()) + sink_bytes +
-                          relay_queue_tiles(rs.tile_size, threads) * uint64_t(rs.tile_size) * rs.tile_size * 16 +
+                          relay_queue_tiles(grid, threads) * uint64_t(rs.tile_size) * rs.tile_size * 16 +
                           (tiles + 1) * 8;
   const uint64_t need = shared + topo.num_faces() * 4;
   if (plan_render(budget, need, rs.tile_size, threads).max_fragments == 0)
@@ -147,6 +120,7 @@ struct ZSweepRenderer::Impl {
   TileGrid grid;
   RenderPlan plan;
   RenderStats setup;
+  RenderStats totals;  // per-tile parts of the render_tiles calls without a stats record
   // Per-thread scratch (records, pool, batch), kept across render_tiles
   // calls: MPI ranks call it once per run of tiles.
   tbb::enumerable_thread_specific<TileWorkspace> spaces;
@@ -227,13 +201,14 @@ ZSweepRenderer::~ZSweepRenderer() = default;
 const TileGrid& ZSweepRenderer::grid() const { return impl_->grid; }
 const RenderStats& ZSweepRenderer::setup_stats() const { return impl_->setup; }
 
+int ZSweepRenderer::threads() const { return std::max(1, impl_->rs.threads); }
+
 void ZSweepRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* tiles, RenderStats* stats) {
   Impl& I = *impl_;
   const auto t0 = Clock::now();
   std::vector<uint32_t> all;
   if (!tiles) {
-    all.resize(I.grid.count());
-    for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
+    all = all_tiles(I.grid);
     tiles = &all;
   }
   uint64_t work = 0;
@@ -243,41 +218,41 @@ void ZSweepRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* t
   // Each thread's counters on their own cache lines (they change per fragment).
   struct alignas(128) PaddedStats : RenderStats {};
   tbb::enumerable_thread_specific<PaddedStats> tile_stats;
-  const int threads = std::max(1, I.rs.threads);
-  SinkRelay relay(sink, relay_queue_tiles(I.grid.size, threads));
-  auto run = [&](size_t k) {
-    const uint32_t t = (*tiles)[k];
-    const TileRect r = I.grid.rect(t);
+  run_tiles(I.grid, *tiles, threads(), sink, [&](uint32_t t, const TileRect& r) -> const float* {
     TileWorkspace& ws = spaces.local();
     sweep_tile(I.in, t, Viewport{int(r.x0), int(r.y0), int(r.x1), int(r.y1)}, I.plan.max_fragments, ws,
                tile_stats.local());
-    relay.deliver(r, ws.out.data());
     progress.add(I.in.bins.offset[t + 1] - I.in.bins.offset[t] + 1);
-  };
-  if (threads == 1 || tiles->size() < 2) {
-    for (size_t k = 0; k < tiles->size(); ++k) run(k);
-  } else {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    // Each worker takes the next tile in list order, so tiles finish nearly
-    // row-major, which keeps streaming sinks' out-of-order buffers small.
-    std::atomic<size_t> next{0};
-    tbb::parallel_for(0, threads, [&](int) {
-      for (size_t k = next++; k < tiles->size(); k = next++) {
-        try {
-          run(k);
-        } catch (...) {
-          next = tiles->size();  // the others stop after their current tile
-          throw;
-        }
-      }
-    });
-  }
-  relay.finish();
+    return ws.out.data();
+  });
   progress.finish();
   if (!stats) return;
   for (const RenderStats& s : tile_stats) add_stats(*stats, s);
   stats->ms_total += ms_since(t0);
   stats->peak_rss_bytes = std::max(stats->peak_rss_bytes, peak_rss_bytes());
+}
+
+void ZSweepRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* tiles) {
+  render_tiles(sink, tiles, &impl_->totals);
+}
+
+std::vector<uint8_t> ZSweepRenderer::tile_totals() const { return pod_bytes(impl_->totals); }
+
+void ZSweepRenderer::add_tile_totals(const std::vector<uint8_t>& other) {
+  RenderStats o;
+  if (!pod_from_bytes(other, &o)) throw std::runtime_error("ZSweep tile totals of the wrong size");
+  RenderStats& T = impl_->totals;
+  add_stats(T, o);
+  T.ms_total += o.ms_total;
+  T.peak_rss_bytes = std::max(T.peak_rss_bytes, o.peak_rss_bytes);
+}
+
+RenderStats ZSweepRenderer::stats() const {
+  RenderStats s = impl_->setup;
+  s.ms_total = s.ms_setup + impl_->totals.ms_total;
+  add_stats(s, impl_->totals);
+  s.peak_rss_bytes = std::max(s.peak_rss_bytes, impl_->totals.peak_rss_bytes);
+  return s;
 }
 
 namespace {
@@ -298,14 +273,6 @@ void render_zsweep_tiles(const TetMesh& mesh, const Topology& topo, const Render
 }
 
 Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSettings& rs, RenderStats* st) {
-  struct ImageSink : TileSink {
-    Image img;
-    void tile(const TileRect& r, const float* rgba) override {
-      for (uint32_t y = r.y0; y < r.y1; ++y)
-        std::copy(rgba + size_t(y - r.y0) * r.width() * 4, rgba + size_t(y - r.y0 + 1) * r.width() * 4,
-                  img.at(r.x0, y));
-    }
-  } sink;
   if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
   const uint64_t image_bytes = uint64_t(rs.width) * rs.height * 16;
   const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
@@ -313,12 +280,12 @@ Image render_zsweep(const TetMesh& mesh, const Topology& topo, const RenderSetti
     throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " + std::to_string(rs.width) +
                              "x" + std::to_string(rs.height) + " float image (" + bytes_str(image_bytes) + ")");
   ZSweepRenderer r(mesh, topo, rs, image_bytes);  // checks the budget before the image is allocated
-  sink.img = Image(rs.width, rs.height);
+  ImageSink sink(r.grid());
   RenderStats local;
   RenderStats& S = st ? *st : local;
   begin_stats(r, &S);
   r.render_tiles(sink, nullptr, &S);
-  return std::move(sink.img);
+  return std::move(sink.image);
 }
 
 }  // namespace zs

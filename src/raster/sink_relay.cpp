@@ -1,4 +1,4 @@
-#include "volume/sink_relay.h"
+#include "raster/sink_relay.h"
 
 namespace zs {
 
@@ -21,7 +21,7 @@ void SinkRelay::deliver(const TileRect& r, const float* rgba) {
     {
       std::lock_guard<std::mutex> q(queue_mu_);
       if (queue_.size() < max_) {
-        queue_.push_back({r, std::vector<float>(rgba, rgba + size_t(r.width()) * r.height() * 4)});
+        queue_.push_back({r, std::vector<float>(rgba, rgba + size_t(r.width()) * r.height() * channels_)});
         if (queue_.size() > peak_) peak_ = queue_.size();
         return;  // the holder (or the next delivery, or finish) passes it on
       }

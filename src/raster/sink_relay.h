@@ -8,17 +8,20 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <mutex>
 #include <vector>
 
-#include "volume/zsweep_renderer.h"
+#include "raster/tile_sink.h"
 
 namespace zs {
 
 class SinkRelay {
  public:
-  SinkRelay(TileSink& sink, size_t max_queued) : sink_(sink), max_(max_queued) {}
+  // `channels`: floats per pixel of the tiles delivered.
+  SinkRelay(TileSink& sink, size_t max_queued, uint32_t channels = 4)
+      : sink_(sink), max_(max_queued), channels_(channels) {}
   // Thread-safe. Exceptions from the sink propagate to the caller.
   void deliver(const TileRect& r, const float* rgba);
   // Delivers what is still queued; call once every thread is done.
@@ -35,6 +38,7 @@ class SinkRelay {
 
   TileSink& sink_;
   size_t max_;
+  uint32_t channels_;
   std::mutex sink_mu_, queue_mu_;
   std::deque<Queued> queue_;
   size_t peak_ = 0;
