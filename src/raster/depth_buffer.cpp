@@ -23,14 +23,13 @@ bool DepthBuffer::insert(size_t p, double z, uint32_t id) {
     const double d = depth_[l * plane_ + p];
     return z < d || (z == d && id < id_[l * plane_ + p]);
   };
-  size_t l = layers_;
-  if (l == 0) return false;
-  const size_t last = l - 1;
+  if (layers_ == 0) return false;
+  const size_t last = layers_ - 1;
   const double dl = depth_[last * plane_ + p];
   // Not nearer than the last kept sample (ties by id decide): dropped.
   if (!(z < dl || (z == dl && id < id_[last * plane_ + p]))) return false;
   // Shift the samples behind (z, id) back one layer, from the end.
-  l = last;
+  size_t l = last;
   while (l > 0 && nearer(l - 1)) {
     depth_[l * plane_ + p] = depth_[(l - 1) * plane_ + p];
     id_[l * plane_ + p] = id_[(l - 1) * plane_ + p];

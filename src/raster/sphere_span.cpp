@@ -69,12 +69,10 @@ Interval quad_set(double al, double be, double ga, double la, double mu) {
   return out;
 }
 
-// The visible set of the sphere's ray family on one line of the camera
-// plane, u the coordinate along the line and v fixed across it: (u, v) =
-// (a, b) for a row, (b, a) for the column extent. Returns the u-interval of
-// (a, b) with a hit at positive depth, as a guess.
-//  Perspective: D = (c·d)² − k|d|², and with the eye outside (k > 0) the hit
-//  set is D >= 0 with c·d > 0 (both roots share the sign of c·d).
+// The a-interval of row b (camera-plane coordinates) whose rays hit at
+// positive depth, as a guess. Orthographic: the visible disk. Perspective:
+// D = (c·d)² − k|d|² >= 0, and with the eye outside (k > 0) also c·d > 0
+// (both roots share the sign of c·d); eye inside (k < 0): the whole row.
 Interval row_interval(const SphereSetup& s, double b) {
   if (!s.cam.perspective) {
     const double db = b - s.cy;
