@@ -1,0 +1,105 @@
+#include "sprites/occlusion_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace zs {
+
+OcclusionMap::OcclusionMap(uint32_t width, uint32_t height, uint32_t max_side) : w_(width), h_(height) {
+  const uint32_t side = std::max(width, height);
+  s_ = std::max<uint32_t>(1, (side + max_side - 1) / max_side);
+  tw_ = (width + s_ - 1) / s_;
+  th_ = (height + s_ - 1) / s_;
+  level_.emplace_back(size_t(tw_) * th_, INFINITY);
+  lw_.push_back(tw_);
+  lh_.push_back(th_);
+}
+
+uint64_t OcclusionMap::bytes() const {
+  uint64_t b = 0;
+  for (const auto& l : level_) b += l.size() * sizeof(double);
+  return b;
+}
+
+void OcclusionMap::write_disc(double X, double Y, double rho, double z) {
+  // Shrunk a little so a pixel centre on the rim (where the exact surface
+  // meets the disc's depth) is never claimed.
+  const double r = rho * (1 - 1e-6);
+  if (!(r > 0) || !std::isfinite(X) || !std::isfinite(Y)) return;
+  const double r2 = r * r;
+  const int ty0 = std::max(0, int(std::floor((Y - r) / s_))), ty1 = std::min(int(th_) - 1, int(std::ceil((Y + r) / s_)));
+  std::vector<double>& m = level_[0];
+  for (int ty = ty0; ty <= ty1; ++ty) {
+    // The block's first and last pixel-centre rows; both must be inside.
+    const double y0 = double(ty) * s_, y1 = double(std::min<uint32_t>((ty + 1) * s_, h_) - 1);
+    const double dy = std::max(std::abs(y0 - Y), std::abs(y1 - Y));
+    const double hw2 = r2 - dy * dy;
+    if (!(hw2 >= 0)) continue;
+    const double hw = std::sqrt(hw2), xl = X - hw, xr = X + hw;
+    // Texels whose first pixel column ≥ xl and last ≤ xr.
+    const int tx0 = std::max(0, int(std::ceil(xl / s_)));
+    for (int tx = tx0; tx < int(tw_); ++tx) {
+      const double x0 = double(tx) * s_, x1 = double(std::min<uint32_t>((tx + 1) * s_, w_) - 1);
+      if (x0 < xl) continue;
+      if (x1 > xr) break;
+      double& d = m[size_t(ty) * tw_ + tx];
+      d = std::min(d, z);
+    }
+  }
+}
+
+bool OcclusionMap::hidden(int i0, int i1, int j0, int j1, double z) const {
+  i0 = std::max(i0, 0), j0 = std::max(j0, 0);
+  i1 = std::min(i1, int(w_) - 1), j1 = std::min(j1, int(h_) - 1);
+  if (i0 > i1 || j0 > j1) return true;  // no pixel centre: nothing to see
+  const int tx0 = i0 / int(s_), tx1 = i1 / int(s_), ty0 = j0 / int(s_), ty1 = j1 / int(s_);
+  const std::vector<double>& m = level_[0];
+  for (int ty = ty0; ty <= ty1; ++ty)
+    for (int tx = tx0; tx <= tx1; ++tx)
+      if (!(occlusion_margin(m[size_t(ty) * tw_ + tx]) < z)) return false;
+  return true;
+}
+
+void OcclusionMap::build_pyramid() {
+  level_.resize(1);
+  lw_.resize(1);
+  lh_.resize(1);
+  while (lw_.back() > 1 || lh_.back() > 1) {
+    const uint32_t pw = lw_.back(), ph = lh_.back(), nw = (pw + 1) / 2, nh = (ph + 1) / 2;
+    const std::vector<double>& p = level_.back();
+    std::vector<double> n(size_t(nw) * nh);
+    for (uint32_t y = 0; y < nh; ++y)
+      for (uint32_t x = 0; x < nw; ++x) {
+        double v = -INFINITY;
+        for (uint32_t dy = 0; dy < 2; ++dy)
+          for (uint32_t dx = 0; dx < 2; ++dx) {
+            const uint32_t sx = std::min(2 * x + dx, pw - 1), sy = std::min(2 * y + dy, ph - 1);
+            v = std::max(v, p[size_t(sy) * pw + sx]);
+          }
+        n[size_t(y) * nw + x] = v;
+      }
+    level_.push_back(std::move(n));
+    lw_.push_back(nw);
+    lh_.push_back(nh);
+  }
+}
+
+bool OcclusionMap::hidden_pyramid(int i0, int i1, int j0, int j1, double z) const {
+  i0 = std::max(i0, 0), j0 = std::max(j0, 0);
+  i1 = std::min(i1, int(w_) - 1), j1 = std::min(j1, int(h_) - 1);
+  if (i0 > i1 || j0 > j1) return true;
+  int tx0 = i0 / int(s_), tx1 = i1 / int(s_), ty0 = j0 / int(s_), ty1 = j1 / int(s_);
+  // The finest level where the box spans at most 2×2 elements.
+  size_t k = 0;
+  while (k + 1 < level_.size() && (tx1 - tx0 > 1 || ty1 - ty0 > 1)) {
+    tx0 >>= 1, tx1 >>= 1, ty0 >>= 1, ty1 >>= 1;
+    ++k;
+  }
+  const std::vector<double>& m = level_[k];
+  for (int ty = ty0; ty <= ty1; ++ty)
+    for (int tx = tx0; tx <= tx1; ++tx)
+      if (!(occlusion_margin(m[size_t(ty) * lw_[k] + tx]) < z)) return false;
+  return true;
+}
+
+}  // namespace zs

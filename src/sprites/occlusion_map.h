@@ -1,0 +1,54 @@
+// The conservative depth map of occlusion culling (digest §2.2.3–2.2.4): each
+// occluding sphere is drawn as the disc through its centre, perpendicular to
+// the view axis, at its centre's depth. That disc lies inside the sphere, so
+// along any ray through it the sphere's front surface is nearer than the
+// disc: the map is never nearer than the exact depth map at any pixel, and
+// whatever lies behind it everywhere is hidden. A plane parallel to the image
+// projects to a circle in both projections, so the disc is exact there too.
+//
+// For large images the map is coarser than the image: one texel per s×s
+// pixel block (s chosen so the map is at most 1024 texels a side), written
+// only where a disc covers every pixel centre of the block. A one-level
+// max-depth pyramid over it answers "is this screen box hidden behind z?"
+// with at most 2×2 reads (the per-sphere test of §2.2.4).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace zs {
+
+class OcclusionMap {
+ public:
+  OcclusionMap(uint32_t width, uint32_t height, uint32_t max_side = 1024);
+
+  // Disc of radius rho pixels centred at (X, Y) (pixel coordinates), depth z.
+  void write_disc(double X, double Y, double rho, double z);
+  // True when every texel over pixel-centre range [i0, i1] x [j0, j1] holds a
+  // depth strictly nearer than z: anything whose surface lies at depth ≥ z
+  // inside that box is hidden. Reads the map itself (used while it grows).
+  bool hidden(int i0, int i1, int j0, int j1, double z) const;
+  // Builds the max pyramid; call once the map is complete.
+  void build_pyramid();
+  // The same question on the pyramid: one level, at most 2×2 elements.
+  bool hidden_pyramid(int i0, int i1, int j0, int j1, double z) const;
+
+  uint32_t block() const { return s_; }
+  uint32_t texels_x() const { return tw_; }
+  uint32_t texels_y() const { return th_; }
+  double texel(uint32_t tx, uint32_t ty) const { return level_[0][size_t(ty) * tw_ + tx]; }
+  uint64_t bytes() const;
+
+ private:
+  uint32_t w_, h_, s_, tw_, th_;
+  std::vector<std::vector<double>> level_;  // level_[0]: the map; then max levels
+  std::vector<uint32_t> lw_, lh_;
+};
+
+// A margin for depths compared across two computations of a surface (the
+// disc's centre depth here, the exact hit in the renderer): hidden only when
+// nearer by more than rounding could explain.
+inline double occlusion_margin(double z) { return z + 1e-9 * (z < 0 ? -z : z) + 1e-300; }
+
+}  // namespace zs

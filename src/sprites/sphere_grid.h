@@ -1,0 +1,38 @@
+// The regular cell grid over a sphere set (digest §2.2.1): built once per
+// set (the data are static), reused by every frame's culling. A sphere
+// belongs to the cell holding its centre; a cell's box is the box of its
+// spheres, radii included, so it may overlap its neighbours.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "spheres/sphere_set.h"
+
+namespace zs {
+
+struct SphereGrid {
+  uint32_t n = 0;                  // cells per axis (n³ cells)
+  std::vector<uint64_t> offset;    // n³ + 1: cell k holds ids[offset[k], offset[k+1])
+  std::vector<uint32_t> ids;       // sphere ids, grouped by cell, ascending within a cell
+  std::vector<glm::dvec3> lo, hi;  // per cell: the box of its spheres (empty cells: lo > hi)
+  uint64_t invalid = 0;            // spheres left out: non-finite centre, radius not > 0 or not finite
+
+  uint32_t cells() const { return n * n * n; }
+  uint64_t count(uint32_t k) const { return offset[k + 1] - offset[k]; }
+  uint64_t bytes() const;
+};
+
+// Bins every drawable sphere of `s` into an n³ grid over the box of the
+// centres (n ≥ 1).
+SphereGrid build_sphere_grid(const SphereSet& s, uint32_t n);
+
+// True when the sphere can be drawn (finite centre, finite radius > 0).
+inline bool drawable_sphere(const glm::dvec3& c, double r) {
+  return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && std::isfinite(r) && r > 0;
+}
+
+}  // namespace zs

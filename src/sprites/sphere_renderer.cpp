@@ -1,0 +1,271 @@
+#include "sprites/sphere_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <tbb/enumerable_thread_specific.h>
+
+#include "raster/depth_buffer.h"
+#include "raster/sphere_span.h"
+#include "raster/tile_loop.h"
+#include "spheres/sphere_shading.h"
+#include "util/bytes_str.h"
+#include "util/memory.h"
+#include "util/progress.h"
+#include "view/camera.h"
+
+namespace zs {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// A thread's scratch, reused from tile to tile.
+struct alignas(128) TileState {
+  DepthBuffer depth;
+  FaceSpans spans;
+  std::vector<float> out;  // RGBA + Z per pixel
+  SphereStats stats;       // this thread's per-tile counts
+};
+
+// Per-pixel bytes of a tile in flight: depth and id, output.
+constexpr uint64_t kTilePixelBytes = 12 + 20;
+
+}  // namespace
+
+uint64_t sphere_set_bytes(const SphereSet& s) {
+  return s.centres.size() * sizeof(glm::dvec3) + s.radii.size() * 8 + s.scalars.size() * 8 +
+         s.rgba.size() * sizeof(glm::vec4) + s.element.size();
+}
+
+struct SphereRenderer::Impl {
+  const SphereSet& s;
+  const std::vector<glm::vec4>& colors;
+  const SphereRenderSettings& rs;
+  View view;
+  CameraPlane cam;
+  TileGrid grid;
+  SphereStats setup, totals;
+  std::vector<uint64_t> bin_offset;  // tiles + 1
+  std::vector<uint32_t> bin_ids;     // sphere ids per tile, front-to-back cell order
+  tbb::enumerable_thread_specific<TileState> states;
+
+  Impl(const SphereSet& spheres, const std::vector<glm::vec4>& c, const SphereGrid& g, const SphereRenderSettings& settings,
+       uint64_t extra_bytes)
+      : s(spheres), colors(c), rs(settings), view(settings.camera, settings.width, settings.height),
+        cam(camera_plane(view)) {
+    const auto t_start = Clock::now();
+    if (rs.mode != SphereMode::Opaque)
+      throw std::runtime_error(std::string("render.mode \"") + to_string(rs.mode) +
+                               "\" is not built yet; only \"opaque\" renders today");
+    if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
+    if (rs.tile_size < 1) throw std::runtime_error("tile size must be at least 1 pixel");
+    if (colors.size() != s.size()) throw std::runtime_error("one colour per sphere is needed");
+    grid = TileGrid{rs.width, rs.height, rs.tile_size, 5};
+    if (uint64_t(grid.cols()) * grid.rows() >= (uint64_t(1) << 32))
+      throw std::runtime_error("too many tiles; use a larger tile size");
+    const int threads = std::max(1, rs.threads);
+    const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
+    SphereStats& S = setup;
+    S.memory_budget_bytes = budget;
+    S.spheres = s.size();
+    S.invalid = g.invalid;
+    S.tiles = grid.count();
+    S.tile_size = rs.tile_size;
+    const uint64_t tile_state = uint64_t(rs.tile_size) * rs.tile_size * kTilePixelBytes;
+    uint64_t shared = extra_bytes + g.bytes() + uint64_t(threads) * tile_state +
+                      relay_queue_tiles(grid, threads) * uint64_t(rs.tile_size) * rs.tile_size * 20;
+    auto check = [&](uint64_t need) {
+      if (need > budget)
+        throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " +
+                                 std::to_string(rs.width) + "x" + std::to_string(rs.height) + " render of " +
+                                 std::to_string(s.size()) + " spheres (needs more than " + bytes_str(need) + ")");
+    };
+    check(shared + s.size() * 4);
+
+    const auto t_vis = Clock::now();
+    std::vector<uint32_t> visible = visible_spheres(s, g, view, rs.culling, &S.vis);
+    S.ms_visibility = ms_since(t_vis);
+    shared += visible.size() * 4 + S.vis.map_bytes;
+
+    // Bins: count, then fill, in the visible order.
+    const auto t_bin = Clock::now();
+    const Viewport image{0, 0, int(rs.width), int(rs.height)};
+    const uint32_t cols = grid.cols(), size = grid.size;
+    auto tile_box = [&](uint32_t id, uint32_t* c0, uint32_t* c1, uint32_t* r0, uint32_t* r1) {
+      const glm::dvec3 c = to_camera(view, s.centres[id]);
+      const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, s.radii[id]);
+      int i0, i1, j0, j1;
+      if (!sphere_pixel_range(su, image, &i0, &i1, &j0, &j1)) return false;
+      *c0 = uint32_t(i0) / size, *c1 = uint32_t(i1) / size, *r0 = uint32_t(j0) / size, *r1 = uint32_t(j1) / size;
+      return true;
+    };
+    bin_offset.assign(uint64_t(grid.count()) + 1, 0);
+    uint32_t c0, c1, r0, r1;
+    for (uint32_t id : visible)
+      if (tile_box(id, &c0, &c1, &r0, &r1))
+        for (uint32_t r = r0; r <= r1; ++r)
+          for (uint32_t c = c0; c <= c1; ++c) ++bin_offset[uint64_t(r) * cols + c + 1];
+    for (uint64_t t = 0; t < grid.count(); ++t) bin_offset[t + 1] += bin_offset[t];
+    S.bin_entries = bin_offset.back();
+    shared += S.bin_entries * 4 + bin_offset.size() * 8;
+    check(shared);
+    S.shared_bytes = shared;
+    bin_ids.resize(S.bin_entries);
+    std::vector<uint64_t> next(bin_offset.begin(), bin_offset.end() - 1);
+    for (uint32_t id : visible)
+      if (tile_box(id, &c0, &c1, &r0, &r1))
+        for (uint32_t r = r0; r <= r1; ++r)
+          for (uint32_t c = c0; c <= c1; ++c) bin_ids[next[uint64_t(r) * cols + c]++] = id;
+    S.ms_binning = ms_since(t_bin);
+    S.ms_setup = ms_since(t_start);
+  }
+
+  // One tile: nearest (depth, id) per pixel, then shade each pixel once.
+  const float* render_tile(uint32_t t, const TileRect& r) {
+    TileState& ts = states.local();
+    SphereStats& S = ts.stats;
+    const uint32_t w = r.width(), h = r.height();
+    ts.depth.reset(w, h, 1);
+    const Viewport vp{int(r.x0), int(r.y0), int(r.x1), int(r.y1)};
+    for (uint64_t e = bin_offset[t]; e < bin_offset[t + 1]; ++e) {
+      const uint32_t id = bin_ids[e];
+      const glm::dvec3 c = to_camera(view, s.centres[id]);
+      const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, s.radii[id]);
+      // No surface of the sphere is nearer than this (a little below its
+      // nearest depth, for rounding): a pixel already nearer cannot change.
+      const double zmin = c.z - s.radii[id];
+      const double z_reject = zmin - 1e-9 * std::abs(zmin);
+      ts.spans.clear();
+      ScanCounters sc;
+      scan_sphere(su, vp, ts.spans, sc);
+      ++S.spheres_scanned;
+      S.pixel_tests += sc.pixel_tests;
+      for (const RowSpan& row : ts.spans.rows) {
+        const size_t base = size_t(row.y - vp.y0) * w - size_t(vp.x0);
+        for (int32_t i = row.x0; i <= row.x1; ++i) {
+          const size_t p = base + size_t(i);
+          if (ts.depth.depth(p) < z_reject) {
+            ++S.early_rejected;
+            continue;
+          }
+          SphereHit hit;
+          if (!sphere_hit(su, double(i), double(row.y), &hit)) continue;
+          ++S.fragments;
+          if (ts.depth.test_write(p, hit.t, id)) ++S.depth_writes;
+        }
+      }
+    }
+    resolve(ts, r);
+    return ts.out.data();
+  }
+
+  void resolve(TileState& ts, const TileRect& r) {
+    const uint32_t w = r.width(), h = r.height();
+    ts.out.resize(size_t(w) * h * 5);
+    float* out = ts.out.data();
+    const double* bg = rs.background;
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) {
+        const size_t p = size_t(y) * w + x;
+        float* o = out + p * 5;
+        const uint32_t id = ts.depth.id(p);
+        if (id == kNoId) {
+          for (int k = 0; k < 4; ++k) o[k] = float(bg[k]);
+          o[4] = INFINITY;
+          continue;
+        }
+        const double X = double(r.x0 + x), Y = double(r.y0 + y);
+        const glm::dvec3 c = to_camera(view, s.centres[id]);
+        const double R = s.radii[id];
+        const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, R);
+        SphereHit hit{0, 0, 0, false};
+        sphere_hit(su, X, Y, &hit);  // the same call that won the depth test
+        const double a = (X - cam.ox) / cam.sx, b = (cam.oy - Y) / cam.sy;
+        const glm::dvec3 P = view.perspective() ? glm::dvec3(a * hit.t, b * hit.t, hit.t) : glm::dvec3(a, b, hit.t);
+        glm::dvec3 n = (P - c) / R;
+        if (hit.inside) n = -n;  // seen from inside: the surface faces the eye the other way
+        // Camera space (x right, y up, z forward) to view space (z towards the viewer).
+        n = glm::normalize(glm::dvec3(n.x, n.y, -n.z));
+        const glm::dvec3 v = view.perspective() ? glm::normalize(glm::dvec3(-P.x, -P.y, P.z)) : glm::dvec3(0, 0, 1);
+        const glm::vec4& col = colors[id];
+        const glm::dvec3 rgb = shade(rs.shading, glm::dvec3(col.r, col.g, col.b), n, v);
+        o[0] = float(rgb.r), o[1] = float(rgb.g), o[2] = float(rgb.b), o[3] = 1.f;  // opaque: alpha ignored
+        o[4] = float(hit.t);
+        ++ts.stats.rendered_pixels;
+      }
+  }
+};
+
+SphereRenderer::SphereRenderer(const SphereSet& spheres, const std::vector<glm::vec4>& colors, const SphereGrid& grid,
+                               const SphereRenderSettings& settings, uint64_t extra_bytes)
+    : impl_(std::make_unique<Impl>(spheres, colors, grid, settings, extra_bytes)) {}
+SphereRenderer::~SphereRenderer() = default;
+const TileGrid& SphereRenderer::grid() const { return impl_->grid; }
+int SphereRenderer::threads() const { return std::max(1, impl_->rs.threads); }
+
+void SphereRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* tiles) {
+  Impl& I = *impl_;
+  const auto t0 = Clock::now();
+  std::vector<uint32_t> all;
+  if (!tiles) {
+    all = all_tiles(I.grid);
+    tiles = &all;
+  }
+  uint64_t work = 0;
+  for (uint32_t t : *tiles) work += I.bin_offset[t + 1] - I.bin_offset[t] + 1;
+  Progress progress("render", work, I.rs.progress);
+  for (TileState& ts : I.states) ts.stats = {};
+  run_tiles(I.grid, *tiles, threads(), sink, [&](uint32_t t, const TileRect& r) {
+    const float* px = I.render_tile(t, r);
+    progress.add(I.bin_offset[t + 1] - I.bin_offset[t] + 1);
+    return px;
+  });
+  progress.finish();
+  for (const TileState& ts : I.states) add_tile_stats(I.totals, ts.stats);
+  I.totals.ms_total += ms_since(t0);
+  I.totals.peak_rss_bytes = std::max(I.totals.peak_rss_bytes, peak_rss_bytes());
+}
+
+std::vector<uint8_t> SphereRenderer::tile_totals() const { return pod_bytes(impl_->totals); }
+
+void SphereRenderer::add_tile_totals(const std::vector<uint8_t>& other) {
+  SphereStats o;
+  if (!pod_from_bytes(other, &o)) throw std::runtime_error("sphere tile totals of the wrong size");
+  add_tile_stats(impl_->totals, o);
+  impl_->totals.ms_total += o.ms_total;
+  impl_->totals.peak_rss_bytes = std::max(impl_->totals.peak_rss_bytes, o.peak_rss_bytes);
+}
+
+SphereStats SphereRenderer::stats() const {
+  SphereStats s = impl_->setup;
+  add_tile_stats(s, impl_->totals);
+  s.ms_total = s.ms_setup + impl_->totals.ms_total;
+  s.peak_rss_bytes = std::max(impl_->totals.peak_rss_bytes, peak_rss_bytes());
+  return s;
+}
+
+const char* to_string(SphereMode m) {
+  switch (m) {
+    case SphereMode::Opaque: return "opaque";
+    case SphereMode::Sorted: return "sorted";
+    case SphereMode::Peel: return "peel";
+    case SphereMode::DualPeel: return "dual_peel";
+    case SphereMode::Weighted: return "weighted";
+  }
+  return "?";
+}
+
+bool parse_sphere_mode(const std::string& str, SphereMode* out) {
+  for (SphereMode m : {SphereMode::Opaque, SphereMode::Sorted, SphereMode::Peel, SphereMode::DualPeel,
+                       SphereMode::Weighted})
+    if (str == to_string(m)) return *out = m, true;
+  return false;
+}
+
+}  // namespace zs

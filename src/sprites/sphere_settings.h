@@ -1,0 +1,38 @@
+// What a sphere render needs besides the spheres and their colours: the
+// view, the image, the lighting, and the visibility switches (the scene's
+// `image`, `camera`, `shading` and `render` blocks; docs/spheres.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "spheres/sphere_shading.h"
+#include "view/camera.h"
+
+namespace zs {
+
+// How fragments are resolved. Only Opaque is built; the others are the
+// translucency modes the scene contract reserves.
+enum class SphereMode { Opaque, Sorted, Peel, DualPeel, Weighted };
+const char* to_string(SphereMode m);
+bool parse_sphere_mode(const std::string& s, SphereMode* out);
+
+struct SphereRenderSettings {
+  uint32_t width = 512, height = 512;
+  double background[4] = {0, 0, 0, 0};  // premultiplied RGBA
+  Camera camera;
+  Shading shading;
+  SphereMode mode = SphereMode::Opaque;
+  // Visibility (docs/spheres.md): a grid³ cell grid, view-volume culling of
+  // its cells, front-to-back occlusion culling of cells against the
+  // conservative centre-disc depth map, and the one-level max-depth pyramid
+  // test per sphere. Each is lossless: the image is bit-identical without.
+  uint32_t grid = 9;
+  bool culling = true;
+  int threads = 1;
+  uint32_t tile_size = 64;
+  uint64_t memory_budget_bytes = 0;  // 0 = default (half of physical memory)
+  bool progress = false;
+};
+
+}  // namespace zs

@@ -1,0 +1,34 @@
+// What a sphere render counts and times (`render --stats`, docs/spheres.md).
+#pragma once
+
+#include <cstdint>
+
+#include "sprites/sphere_visibility.h"
+
+namespace zs {
+
+struct SphereStats {
+  double ms_total = 0, ms_setup = 0;   // setup: visibility and binning
+  double ms_visibility = 0, ms_binning = 0, ms_grid = 0;
+  uint64_t spheres = 0, invalid = 0;
+  VisibilityStats vis;
+  uint64_t bin_entries = 0, tiles = 0, tile_size = 0;
+  // Per tile, summed: spheres scanned, pixel centres tested, fragments whose
+  // exact depth was computed, fragments rejected by the early depth test
+  // (the sphere's nearest depth behind the buffer), depth writes.
+  uint64_t spheres_scanned = 0, pixel_tests = 0, fragments = 0, early_rejected = 0, depth_writes = 0;
+  uint64_t rendered_pixels = 0;
+  uint64_t peak_rss_bytes = 0, memory_budget_bytes = 0, shared_bytes = 0;
+};
+
+// The per-tile parts of `tile` added to `into`.
+inline void add_tile_stats(SphereStats& into, const SphereStats& tile) {
+  into.spheres_scanned += tile.spheres_scanned;
+  into.pixel_tests += tile.pixel_tests;
+  into.fragments += tile.fragments;
+  into.early_rejected += tile.early_rejected;
+  into.depth_writes += tile.depth_writes;
+  into.rendered_pixels += tile.rendered_pixels;
+}
+
+}  // namespace zs
