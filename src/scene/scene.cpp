@@ -109,6 +109,92 @@ std::vector<OpacityPoint> opacities(const Ctx& c, const json& v) {
   return out;
 }
 
+double memory_budget_mb(const Ctx& c, const json& v) {
+  const double mb = num(c, v, "render.memory_budget_mb");
+  // Up to 2^44 MiB (2^64 bytes): beyond, the byte count is not representable
+  // (a fuzzing finding: the conversion was undefined behaviour).
+  if (!(mb > 0 && mb < 17592186044416.0)) c.fail("render.memory_budget_mb must be positive and below 2^44");
+  return mb;
+}
+
+// `spheres`, `shading` and the sphere `render` keys (docs/spheres.md).
+void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
+  SphereScene& sp = s->spheres;
+  const json& v = j["spheres"];
+  if (v.is_string()) {
+    sp.path = c.resolve(v.get<std::string>());
+  } else {
+    check_keys(c, v, "spheres", {"path", "radius_scale", "color"});
+    if (!v.contains("path") || !v["path"].is_string()) c.fail("spheres.path must be a string");
+    sp.path = c.resolve(v["path"].get<std::string>());
+    if (v.contains("radius_scale")) {
+      sp.radius_scale = num(c, v["radius_scale"], "spheres.radius_scale");
+      if (!(sp.radius_scale > 0) || !std::isfinite(sp.radius_scale)) c.fail("spheres.radius_scale must be positive");
+    }
+    if (v.contains("color")) {
+      if (!v["color"].is_string() || !parse_sphere_color_mode(v["color"].get<std::string>(), &sp.color))
+        c.fail("spheres.color must be \"element\", \"rgba\" or \"scalar\"");
+      sp.has_color_mode = true;
+    }
+  }
+  if (j.contains("shading")) {
+    const json& sh = j["shading"];
+    check_keys(c, sh, "shading", {"model", "light_direction", "ambient", "diffuse", "specular", "shininess"});
+    Shading& S = sp.shading;
+    if (sh.contains("model")) {
+      const std::string m = sh["model"].is_string() ? sh["model"].get<std::string>() : "";
+      if (m == "phong") S.model = ShadingModel::Phong;
+      else if (m == "flat") S.model = ShadingModel::Flat;
+      else c.fail("shading.model must be \"phong\" or \"flat\"");
+    }
+    if (sh.contains("light_direction")) {
+      S.light_direction = vec3(c, sh["light_direction"], "shading.light_direction");
+      if (!(glm::length(S.light_direction) > 0)) c.fail("shading.light_direction must not be zero");
+    }
+    auto coef = [&](const char* k, double* out, double hi) {
+      if (!sh.contains(k)) return;
+      *out = num(c, sh[k], std::string("shading.") + k);
+      if (!(*out >= 0 && *out <= hi)) c.fail(std::string("shading.") + k + " must be in [0, " + std::to_string(int(hi)) + "]");
+    };
+    coef("ambient", &S.ambient, 1);
+    coef("diffuse", &S.diffuse, 1);
+    coef("specular", &S.specular, 1);
+    coef("shininess", &S.shininess, 10000);
+  }
+  if (j.contains("render")) {
+    const json& r = j["render"];
+    check_keys(c, r, "render",
+               {"mode", "surfaces", "tolerance", "max_layers", "grid", "culling", "memory_budget_mb"});
+    if (r.contains("mode")) {
+      if (!r["mode"].is_string() || !parse_sphere_mode(r["mode"].get<std::string>(), &sp.mode))
+        c.fail("render.mode must be \"opaque\", \"sorted\", \"peel\", \"dual_peel\" or \"weighted\"");
+    }
+    if (r.contains("surfaces")) {
+      const json& f = r["surfaces"];
+      if (!f.is_string() || (f != "both" && f != "front")) c.fail("render.surfaces must be \"both\" or \"front\"");
+      sp.front_surfaces_only = f == "front";
+    }
+    if (r.contains("tolerance")) {
+      sp.tolerance = num(c, r["tolerance"], "render.tolerance");
+      if (!(sp.tolerance >= 0 && sp.tolerance <= 255)) c.fail("render.tolerance must be in [0, 255]");
+    }
+    auto count = [&](const char* k, uint32_t lo, uint32_t hi, uint32_t* out) {
+      if (!r.contains(k)) return;
+      if (!r[k].is_number_unsigned() || r[k].get<uint64_t>() < lo || r[k].get<uint64_t>() > hi)
+        c.fail(std::string("render.") + k + " must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi));
+      *out = r[k].get<uint32_t>();
+    };
+    count("max_layers", 0, 1000000, &sp.max_layers);
+    count("grid", 1, 256, &sp.grid);
+    if (r.contains("culling")) {
+      if (!r["culling"].is_boolean()) c.fail("render.culling must be true or false");
+      sp.culling = r["culling"].get<bool>();
+    }
+    if (r.contains("memory_budget_mb"))
+      s->settings.memory_budget_bytes = uint64_t(memory_budget_mb(c, r["memory_budget_mb"]) * 1048576.0);
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& name, const std::string& base_dir) {
@@ -121,13 +207,22 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     // for a double (1e999) is nlohmann's out_of_range. One line either way.
     c.fail(std::string("invalid JSON: ") + e.what());
   }
-  check_keys(c, j, "scene", {"mesh", "image", "camera", "transfer_function", "render"});
+  check_keys(c, j, "scene", {"mesh", "spheres", "image", "camera", "transfer_function", "shading", "render"});
   Scene s;
   RenderSettings& rs = s.settings;
 
-  if (!j.contains("mesh")) c.fail("missing 'mesh'");
-  const json& m = j["mesh"];
-  if (m.is_string()) {
+  if (j.contains("mesh") && j.contains("spheres")) c.fail("a scene has 'mesh' or 'spheres', not both");
+  if (!j.contains("mesh") && !j.contains("spheres")) c.fail("missing 'mesh' (volume) or 'spheres'");
+  if (j.contains("spheres")) {
+    s.kind = SceneKind::Spheres;
+    parse_spheres_block(c, j, &s);
+  } else if (j.contains("shading")) {
+    c.fail("'shading' is for sphere scenes");
+  }
+  const json& m = j.contains("mesh") ? j["mesh"] : json("");
+  if (s.kind == SceneKind::Spheres) {
+    // parsed above
+  } else if (m.is_string()) {
     s.mesh_path = c.resolve(m.get<std::string>());
   } else {
     check_keys(c, m, "mesh", {"path", "scalar", "q"});
@@ -198,7 +293,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     s.has_transfer_function = true;
   }
 
-  if (j.contains("render")) {
+  if (j.contains("render") && s.kind == SceneKind::Volume) {
     const json& r = j["render"];
     check_keys(c, r, "render",
                {"scan", "bconvert_variant", "integrator", "precision", "early_termination", "max_list_length",
@@ -239,6 +334,22 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     }
   }
   return s;
+}
+
+SphereRenderSettings sphere_render_settings(const RenderSettings& common, const SphereScene& sp) {
+  SphereRenderSettings r;
+  r.width = common.width, r.height = common.height;
+  for (int k = 0; k < 4; ++k) r.background[k] = common.background[k];
+  r.camera = common.camera;
+  r.shading = sp.shading;
+  r.mode = sp.mode;
+  r.grid = sp.grid;
+  r.culling = sp.culling;
+  r.threads = common.threads;
+  r.tile_size = common.tile_size;
+  r.memory_budget_bytes = common.memory_budget_bytes;
+  r.progress = common.progress;
+  return r;
 }
 
 Scene load_scene(const std::string& path) {

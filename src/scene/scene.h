@@ -6,13 +6,40 @@
 
 #include "mesh/io/mesh_io.h"
 #include "scene/scene_defaults.h"
+#include "spheres/sphere_colors.h"
+#include "sprites/sphere_settings.h"
 #include "volume/render_settings.h"
 
 namespace zs {
 
+// Which renderer a scene is for: its top-level `mesh` or `spheres` key.
+enum class SceneKind { Volume, Spheres };
+
+// The sphere renderer's part of a scene (docs/spheres.md): the set, how it is
+// coloured, lit and rendered. Image, camera, transfer function and memory
+// budget are the volume scene's (Scene::settings).
+struct SphereScene {
+  std::string path;  // resolved against the scene's directory
+  double radius_scale = 1.0;
+  bool has_color_mode = false;  // false: default_color_mode of the set
+  SphereColorMode color = SphereColorMode::Element;
+  Shading shading;
+  SphereMode mode = SphereMode::Opaque;
+  bool front_surfaces_only = false;  // render.surfaces: "front" (translucency; reserved)
+  double tolerance = 8;              // render.tolerance (translucency; reserved)
+  uint32_t max_layers = 32;          // render.max_layers (translucency; reserved)
+  uint32_t grid = 9;
+  bool culling = true;
+};
+
+// The settings a SphereRenderer takes, from a scene's common and sphere parts.
+SphereRenderSettings sphere_render_settings(const RenderSettings& common, const SphereScene& sp);
+
 struct Scene {
+  SceneKind kind = SceneKind::Volume;
   std::string mesh_path;  // resolved against the scene's directory
   ReadOptions mesh_options;
+  SphereScene spheres;    // kind == Spheres
   RenderSettings settings;
   bool has_camera = false;             // false: frame the mesh automatically
   bool has_transfer_function = false;  // false: default ramp over the scalar range
