@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   zs::add_bench_command(app);
   zs::add_compare_command(app);
   zs::add_reference_command(app);
+  zs::add_spheres_command(app);
 
   try {
     app.parse(argc, argv);

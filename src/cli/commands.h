@@ -14,5 +14,6 @@ void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_reference_command(CLI::App& app);
+void add_spheres_command(CLI::App& app);
 
 }  // namespace zs

@@ -1,5 +1,5 @@
 // `zsweep mesh info [MESH] [--json]`: counts, topology and validation report;
-// for sphere files (.pdb/.ent/.sph) the sphere report of sphere_info.h.
+// for sphere files (.pdb/.ent/.sph/.sphb) the sphere report of sphere_info.h.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -27,6 +27,7 @@ void print_sphere_info(const std::string& path, bool json) {
         {"file", path},
         {"spheres", s.size()},
         {"skipped", s.skipped},
+        {"invalid", s.invalid},
         {"degenerate", s.degenerate},
         {"bounds", {{lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z}}},
         {"radius", {*rmin, *rmax}},
@@ -42,7 +43,8 @@ void print_sphere_info(const std::string& path, bool json) {
   line("file:", path);
   line("spheres:", std::to_string(s.size()));
   line("skipped records:", std::to_string(s.skipped));
-  line("degenerate:", std::to_string(s.degenerate) + " (zero radius or non-finite scalar)");
+  line("invalid (skipped):", std::to_string(s.invalid) + " (zero, negative or non-finite radius, non-finite centre)");
+  line("degenerate:", std::to_string(s.degenerate) + " (non-finite scalar)");
   std::snprintf(buf, sizeof buf, "[%.9g, %.9g, %.9g] - [%.9g, %.9g, %.9g]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
   line("centre bounds:", buf);
   std::snprintf(buf, sizeof buf, "[%.9g, %.9g]", *rmin, *rmax);
@@ -53,6 +55,7 @@ void print_sphere_info(const std::string& path, bool json) {
   } else {
     line("scalar:", "none");
   }
+  line("colours:", s.has_rgba() ? "rgba" : s.has_elements() ? "by element" : "none");
   for (const std::string& note : s.notes) line("note:", note);
 }
 

@@ -1,4 +1,4 @@
-// `zsweep mesh info` for sphere files (.pdb/.ent/.sph): counts, bounds and
+// `zsweep mesh info` for sphere files (.pdb/.ent/.sph/.sphb): counts, bounds and
 // radius range instead of the tet report.
 #pragma once
 

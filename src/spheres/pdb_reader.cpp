@@ -8,6 +8,7 @@
 
 #include "util/file_error.h"
 #include "util/text_lines.h"
+#include "spheres/elements.h"
 #include "spheres/vdw_radii.h"
 
 namespace zs {
@@ -91,6 +92,7 @@ SphereSet parse_pdb(std::string_view text, const std::string& name) {
     if (element.empty()) element = element_from_name(columns(line, 12, 4));
     double radius = kDefaultVdwRadius;
     if (!vdw_radius(element, radius)) ++unknown;
+    s.element.push_back(static_cast<uint8_t>(atomic_number(element)));
 
     const auto b = parse_number(trim(columns(line, 60, 6)));
     if (!b && no_bfactor_line == 0) no_bfactor_line = line_no;

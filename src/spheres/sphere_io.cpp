@@ -4,9 +4,11 @@
 #include <cctype>
 #include <filesystem>
 
-#include "util/file_error.h"
 #include "spheres/pdb_reader.h"
+#include "spheres/sphere_binary.h"
 #include "spheres/sphere_reader.h"
+#include "spheres/sphere_writer.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -22,7 +24,7 @@ std::string lower_extension(const std::string& path) {
 
 bool is_sphere_file(const std::string& path) {
   const std::string e = lower_extension(path);
-  return e == ".pdb" || e == ".ent" || e == ".sph";
+  return e == ".pdb" || e == ".ent" || e == ".sph" || e == ".sphb";
 }
 
 SphereSet read_sphere_file(const std::string& path) {
@@ -30,8 +32,16 @@ SphereSet read_sphere_file(const std::string& path) {
   if (!std::filesystem::exists(path, ec)) throw FileError(path, "no such file");
   const std::string e = lower_extension(path);
   if (e == ".sph") return read_spheres(path);
+  if (e == ".sphb") return read_spheres_binary(path);
   if (e == ".pdb" || e == ".ent") return read_pdb(path);
-  throw FileError(path, "unknown sphere format (expected .pdb, .ent or .sph)");
+  throw FileError(path, "unknown sphere format (expected .pdb, .ent, .sph or .sphb)");
+}
+
+void write_spheres(const std::string& path, const SphereSet& s) {
+  const std::string e = lower_extension(path);
+  if (e == ".sph") return write_spheres_text(path, s);
+  if (e == ".sphb") return write_spheres_binary(path, s);
+  throw FileError(path, "unknown sphere output format (expected .sph or .sphb)");
 }
 
 }  // namespace zs

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "spheres/sphere_validity.h"
 #include "util/file_error.h"
 #include "util/text_lines.h"
 
@@ -15,7 +16,8 @@ namespace {
   throw FileError(name, line, what);
 }
 
-constexpr size_t kMax = 5;  // x y z r scalar
+constexpr size_t kMax = 8;  // x y z r R G B A
+constexpr const char* kForms = "expected 'x y z r', 'x y z r scalar' or 'x y z r R G B A' (4, 5 or 8 numbers)";
 
 }  // namespace
 
@@ -23,15 +25,14 @@ SphereSet parse_spheres(std::string_view text, const std::string& name) {
   SphereSet s;
   TextLines lines(text);
   std::string_view line;
-  size_t first_fields = 0, first_line = 0;  // the first sphere line fixes 4 or 5 fields
+  size_t first_fields = 0, first_line = 0;  // the first sphere line fixes the form
   while (lines.next(line)) {
     const size_t line_no = lines.line_no();
     std::string_view tok[kMax];
     const size_t n = split_tokens(line, tok, kMax);
     if (n == 0 || tok[0][0] == '#') continue;
-    if (n < 4 || n > kMax)
-      fail_at(name, line_no, "expected 'x y z r [scalar]' (4 or 5 numbers), found " + std::to_string(n) + (n > kMax ? "+" : "") +
-           " fields");
+    if (n != 4 && n != 5 && n != 8)
+      fail_at(name, line_no, std::string(kForms) + ", found " + std::to_string(n) + (n > kMax ? "+" : "") + " fields");
     if (first_fields == 0) {
       first_fields = n;
       first_line = line_no;
@@ -45,17 +46,29 @@ SphereSet parse_spheres(std::string_view text, const std::string& name) {
       if (!x) fail_at(name, line_no, "expected a number, found " + quoted_token(tok[k]));
       v[k] = *x;
     }
-    for (size_t k = 0; k < 3; ++k)
-      if (!std::isfinite(v[k])) fail_at(name, line_no, "non-finite coordinate " + quoted_token(tok[k]));
-    if (std::isnan(v[3]) || std::isinf(v[3])) fail_at(name, line_no, "non-finite radius " + quoted_token(tok[3]));
-    if (v[3] < 0.0) fail_at(name, line_no, "negative radius " + quoted_token(tok[3]));
+    if (n == 8)
+      for (size_t k = 4; k < 8; ++k)
+        if (!valid_rgba_component(v[k]))
+          fail_at(name, line_no, std::string(1, "RGBA"[k - 4]) + " " + quoted_token(tok[k]) + " is not in [0, 1]");
+    if (!drawable_sphere(v[0], v[1], v[2], v[3])) {
+      ++s.invalid;
+      continue;
+    }
     s.centres.push_back({v[0], v[1], v[2]});
     s.radii.push_back(v[3]);
-    if (n == 5) s.scalars.push_back(v[4]);
-    if (v[3] == 0.0 || (n == 5 && !std::isfinite(v[4]))) ++s.degenerate;
+    if (n == 5) {
+      s.scalars.push_back(v[4]);
+      if (!std::isfinite(v[4])) ++s.degenerate;
+    }
+    if (n == 8) s.rgba.push_back({float(v[4]), float(v[5]), float(v[6]), float(v[7])});
   }
-  if (s.centres.empty()) throw FileError(name, "no spheres (expected lines 'x y z r [scalar]')");
-  if (s.has_scalars()) s.scalar_name = "scalar";
+  if (first_fields == 0) throw FileError(name, "no spheres (expected lines 'x y z r [scalar | R G B A]')");
+  if (s.centres.empty())
+    throw FileError(name, "no drawable spheres: all " + std::to_string(s.invalid) +
+                              " have a zero, negative or non-finite radius or a non-finite centre");
+  if (first_fields == 5) s.scalar_name = "scalar";
+  if (s.invalid)
+    s.notes.push_back(std::to_string(s.invalid) + " spheres skipped: zero, negative or non-finite radius, or non-finite centre");
   return s;
 }
 

@@ -1,7 +1,10 @@
 // The plain sphere list `.sph`: '#' comment lines and blank lines anywhere,
-// otherwise one sphere per line
-//   x y z r [scalar]
-// with the scalar on every sphere line or on none.
+// otherwise one sphere per line, in one of three forms (the same on every
+// sphere line):
+//   x y z r               4 fields
+//   x y z r scalar        5 fields
+//   x y z r R G B A       8 fields, colour and opacity in [0, 1]
+// The binary form of the same data is `.sphb` (sphere_binary.h).
 #pragma once
 
 #include <string>
@@ -11,10 +14,12 @@
 
 namespace zs {
 
-// Throws FileError naming the file and line: a wrong number of fields, a
-// token that is not a number, a non-finite coordinate, a negative or
-// non-finite radius, no spheres at all. A zero radius or a non-finite scalar
-// is kept and counted as degenerate.
+// Spheres with a zero, negative or non-finite radius or a non-finite centre
+// are skipped and counted (SphereSet::invalid). A non-finite scalar is kept
+// and counted as degenerate. Throws FileError naming the file and line: a
+// field count other than 4, 5 or 8, a count unlike the first sphere line's, a
+// token that is not a number, an R, G, B or A outside [0, 1] or not finite;
+// and naming the file: no sphere lines at all, or none that is drawable.
 SphereSet parse_spheres(std::string_view text, const std::string& name);
 SphereSet read_spheres(const std::string& path);
 

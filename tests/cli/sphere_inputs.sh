@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `zsweep mesh info` on sphere files (.pdb, .sph): the report for two small
+# `zsweep mesh info` on sphere files (.pdb, .sph, .sphb): the report for two small
 # good files, and for every file in tests/data/spheres/bad exactly the
 # one-line error listed in its EXPECTED, exit code 1, nothing on stdout.
 set -u
@@ -19,6 +19,10 @@ expect_line small.pdb "scalar:                     b_factor, range [5, 20]"
 "$zsweep" mesh info small.sph --json >"$tmp/out" 2>"$tmp/err" || { echo "FAIL small.sph: $(cat "$tmp/err")"; ((fail++)); }
 expect_line small.sph '  "spheres": 3'
 expect_line small.sph '  "degenerate": 1,'
+expect_line small.sph '  "invalid": 1,'
+"$zsweep" mesh info invalid.sph >"$tmp/out" 2>"$tmp/err" || { echo "FAIL invalid.sph: $(cat "$tmp/err")"; ((fail++)); }
+expect_line invalid.sph "spheres:                    2"
+expect_line invalid.sph "invalid (skipped):          3 (zero, negative or non-finite radius, non-finite centre)"
 
 listed=()
 while IFS=$'\t' read -r file expected; do
@@ -41,4 +45,4 @@ done
 "$zsweep" mesh info missing.pdb >/dev/null 2>"$tmp/err"
 if [[ "$(cat "$tmp/err")" == "zsweep: error: missing.pdb: no such file" ]]; then ((pass++)); else echo "FAIL missing.pdb: $(cat "$tmp/err")"; ((fail++)); fi
 echo "sphere inputs: $pass passed, $fail failed"
-[[ $fail -eq 0 && $pass -ge 18 ]]
+[[ $fail -eq 0 && $pass -ge 24 ]]

@@ -9,6 +9,7 @@
 
 #include "util/file_error.h"
 #include "spheres/pdb_reader.h"
+#include "spheres/sphere_colors.h"
 #include "spheres/sphere_io.h"
 #include "spheres/sphere_reader.h"
 #include "test_paths.h"
@@ -55,28 +56,51 @@ TEST(SphereReader, ReadsSpheresCommentsAndScalars) {
   EXPECT_EQ(s.degenerate, 0u);
 }
 
-TEST(SphereReader, ZeroRadiusAndNonFiniteScalarAreDegenerateNotErrors) {
-  const SphereSet s = parse_spheres("0 0 0 0\n1 1 1 1\n2 2 2 -0\n", "s.sph");
-  EXPECT_EQ(s.size(), 3u);
-  EXPECT_FALSE(s.has_scalars());
-  EXPECT_EQ(s.degenerate, 2u);
-  const SphereSet t = parse_spheres("0 0 0 1 nan\n1 1 1 1 1\n", "s.sph");
+TEST(SphereReader, InvalidSpheresAreSkippedAndCountedNonFiniteScalarKept) {
+  const SphereSet s = parse_spheres("0 0 0 0\n1 1 1 1\n2 2 2 -0\n3 3 3 -0.5\n4 4 4 inf\n5 5 5 nan\n"
+                                    "nan 6 6 1\n7 -inf 7 1\n8 8 8 2\n", "s.sph");
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s.invalid, 7u);
+  EXPECT_EQ(s.degenerate, 0u);
+  EXPECT_EQ(s.centres[1], glm::dvec3(8, 8, 8));
+  EXPECT_EQ(s.radii[1], 2.0);
+  ASSERT_EQ(s.notes.size(), 1u);
+  EXPECT_EQ(s.notes[0], "7 spheres skipped: zero, negative or non-finite radius, or non-finite centre");
+  const SphereSet t = parse_spheres("0 0 0 1 nan\n1 1 1 1 1\n2 2 2 -1 5\n", "s.sph");
+  EXPECT_EQ(t.size(), 2u);
   EXPECT_EQ(t.degenerate, 1u);
+  EXPECT_EQ(t.invalid, 1u);
+  ASSERT_EQ(t.scalars.size(), 2u);
   EXPECT_TRUE(std::isnan(t.scalars[0]));
 }
 
+TEST(SphereReader, ReadsRgbaSpheres) {
+  const SphereSet s = parse_spheres("# x y z r R G B A\n1 2 3 0.5 1 0 0.25 0.5\n0 0 0 1 0 1 1 1\n", "s.sph");
+  ASSERT_EQ(s.size(), 2u);
+  ASSERT_TRUE(s.has_rgba());
+  EXPECT_FALSE(s.has_scalars());
+  EXPECT_EQ(s.rgba[0], glm::vec4(1, 0, 0.25f, 0.5f));
+  EXPECT_EQ(s.rgba[1], glm::vec4(0, 1, 1, 1));
+  // A colour out of range is an error even on a sphere that would be skipped.
+  EXPECT_EQ(sph_error("0 0 0 1 0 0 0 1\n0 0 0 0 0 0 0 1.5\n"), "s.sph:2: A '1.5' is not in [0, 1]");
+  EXPECT_EQ(sph_error("0 0 0 1 -0.1 0 0 1\n"), "s.sph:1: R '-0.1' is not in [0, 1]");
+  EXPECT_EQ(sph_error("0 0 0 1 0 nan 0 1\n"), "s.sph:1: G 'nan' is not in [0, 1]");
+  EXPECT_EQ(sph_error("0 0 0 1 0 0 inf 1\n"), "s.sph:1: B 'inf' is not in [0, 1]");
+}
+
 TEST(SphereReader, ErrorsNameFileAndLine) {
-  EXPECT_EQ(sph_error("1 2 3\n"), "s.sph:1: expected 'x y z r [scalar]' (4 or 5 numbers), found 3 fields");
-  EXPECT_EQ(sph_error("# c\n1 2 3 4 5 6 7\n"),
-            "s.sph:2: expected 'x y z r [scalar]' (4 or 5 numbers), found 6+ fields");
+  const std::string forms = "expected 'x y z r', 'x y z r scalar' or 'x y z r R G B A' (4, 5 or 8 numbers), found ";
+  EXPECT_EQ(sph_error("1 2 3\n"), "s.sph:1: " + forms + "3 fields");
+  EXPECT_EQ(sph_error("# c\n1 2 3 4 5 6 7\n"), "s.sph:2: " + forms + "7 fields");
+  EXPECT_EQ(sph_error("# c\n1 2 3 4 5 6\n"), "s.sph:2: " + forms + "6 fields");
+  EXPECT_EQ(sph_error("\n\n1 2 3 4 5 6 7 8 9\n"), "s.sph:3: " + forms + "9+ fields");
   EXPECT_EQ(sph_error("1 2 3 4\n1 2 3 4 5\n"), "s.sph:2: expected 4 numbers like line 1, found 5");
+  EXPECT_EQ(sph_error("1 2 3 4 0 0 0 1\n\n1 2 3 4 5\n"), "s.sph:3: expected 8 numbers like line 1, found 5");
   EXPECT_EQ(sph_error("1 2 3 4\n1 two 3 4\n"), "s.sph:2: expected a number, found 'two'");
-  EXPECT_EQ(sph_error("1 2 3 -0.5\n"), "s.sph:1: negative radius '-0.5'");
-  EXPECT_EQ(sph_error("1 2 3 nan\n"), "s.sph:1: non-finite radius 'nan'");
-  EXPECT_EQ(sph_error("1 2 3 1e999\n"), "s.sph:1: non-finite radius '1e999'");
-  EXPECT_EQ(sph_error("1 -inf 3 1\n"), "s.sph:1: non-finite coordinate '-inf'");
-  EXPECT_EQ(sph_error("# only a comment\n\n"), "s.sph: no spheres (expected lines 'x y z r [scalar]')");
-  EXPECT_EQ(sph_error(""), "s.sph: no spheres (expected lines 'x y z r [scalar]')");
+  EXPECT_EQ(sph_error("# only a comment\n\n"), "s.sph: no spheres (expected lines 'x y z r [scalar | R G B A]')");
+  EXPECT_EQ(sph_error(""), "s.sph: no spheres (expected lines 'x y z r [scalar | R G B A]')");
+  EXPECT_EQ(sph_error("1 2 3 -1\n1 2 3 0\n"),
+            "s.sph: no drawable spheres: all 2 have a zero, negative or non-finite radius or a non-finite centre");
 }
 
 TEST(PdbReader, ReadsAtomsAndHetatmsByColumn) {
@@ -96,6 +120,22 @@ TEST(PdbReader, ReadsAtomsAndHetatmsByColumn) {
   EXPECT_EQ(s.skipped, 0u);
   ASSERT_EQ(s.notes.size(), 1u);
   EXPECT_EQ(s.notes[0], "1 atoms of an element without a tabulated radius: 1.8 Å");
+  ASSERT_TRUE(s.has_elements());
+  EXPECT_EQ(s.element, (std::vector<uint8_t>{7, 6, 26}));  // N, C, Fe
+}
+
+TEST(PdbReader, ElementNumbersFromElementFieldOrAtomName) {
+  const std::string text = atom("ATOM", " CA ", ' ', 0, 0, 0, 1, "") + atom("HETATM", "CA  ", ' ', 0, 0, 0, 1, "CA") +
+                           atom("ATOM", "1HB ", ' ', 0, 0, 0, 1, "") + atom("ATOM", " SD ", ' ', 0, 0, 0, 1, "S") +
+                           atom("HETATM", "ZN  ", ' ', 0, 0, 0, 1, "Zn") + atom("ATOM", " XX ", ' ', 0, 0, 0, 1, "Xx") +
+                           atom("ATOM", " D1 ", ' ', 0, 0, 0, 1, "D");
+  const SphereSet s = parse_pdb(text, "p.pdb");
+  EXPECT_EQ(s.element, (std::vector<uint8_t>{6, 20, 1, 16, 30, 0, 1}));
+  EXPECT_EQ(default_color_mode(s), SphereColorMode::Element);
+  const auto colours = sphere_colors(s, SphereColorMode::Element, TransferFunction{});
+  EXPECT_EQ(colours[3], element_color(16));   // sulfur: yellow
+  EXPECT_NE(colours[3], element_color(0));
+  EXPECT_EQ(colours[5], element_color(0));    // unknown: grey
 }
 
 TEST(PdbReader, BlankElementFallsBackToAtomName) {
@@ -160,7 +200,7 @@ TEST(SphereIo, ReadsFilesByExtension) {
   EXPECT_EQ(error_of([&] { read_sphere_file(missing); }), missing + ": no such file");
   std::ofstream(sph) << "0 0 0 1\n0 0 0\n";
   EXPECT_EQ(error_of([&] { read_sphere_file(sph); }),
-            sph + ":2: expected 'x y z r [scalar]' (4 or 5 numbers), found 3 fields");
+            sph + ":2: expected 'x y z r', 'x y z r scalar' or 'x y z r R G B A' (4, 5 or 8 numbers), found 3 fields");
 }
 
 // A real PDB file from Debian's pymol-data: the atom count must match an
@@ -194,6 +234,11 @@ TEST(PdbReader, ReadsPymolDataFile) {
   EXPECT_EQ(s.skipped, other_alt) << path;
   EXPECT_EQ(s.centres[0].x, x0) << path;
   for (double r : s.radii) EXPECT_TRUE(r >= 1.2 && r <= 2.75) << r;
+  // Proteins are mostly C, N, O (and S): every atom gets an element here.
+  ASSERT_EQ(s.element.size(), s.size());
+  size_t cno = 0;
+  for (uint8_t z : s.element) cno += (z == 6 || z == 7 || z == 8);
+  EXPECT_GT(cno, s.size() * 9 / 10) << path;
 }
 
 }  // namespace

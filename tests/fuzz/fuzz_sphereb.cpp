@@ -1,0 +1,20 @@
+// libFuzzer target: the binary sphere list reader (parse_spheres_binary,
+// .sphb). As for fuzz_sphere.cpp: FileError is an expected outcome, anything
+// else (crash, other exception, an accepted set breaking
+// fuzz_sphere_check.h) is a finding.
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "fuzz_sphere_check.h"
+#include "spheres/sphere_binary.h"
+#include "util/file_error.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  try {
+    zs::fuzz::check_spheres(
+        zs::parse_spheres_binary(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.sphb"));
+  } catch (const zs::FileError&) {
+  }
+  return 0;
+}
