@@ -20,6 +20,8 @@
 #include "mesh/validate.h"
 #include "view/camera.h"
 #include "scene/scene.h"
+#include "spheres/sphere_colors.h"
+#include "sprites/sphere_renderer.h"
 #include "util/atomic_file.h"
 #include "util/memory.h"
 #include "volume/segment_batch.h"
@@ -147,10 +149,127 @@ std::unique_ptr<R> render_frames(int frames, ImageTileWriter& writer, const Make
   return r;
 }
 
+// Sphere scenes (src/sprites/): the same tiles, threads, streaming writers,
+// budget and MPI as volume scenes, through the renderer interface.
+void write_sphere_stats(const std::string& path, const SphereStats& S, const SceneInput& in, SphereColorMode color,
+                        const std::vector<double>& frame_ms) {
+  const VisibilityStats& V = S.vis;
+  nlohmann::json j = {
+      {"renderer", "spheres"},
+      {"time_ms",
+       {{"total", S.ms_total},
+        {"setup", S.ms_setup},
+        {"visibility", S.ms_visibility},
+        {"view_culling", V.ms_view},
+        {"occlusion_culling", V.ms_occlusion},
+        {"pyramid", V.ms_pyramid},
+        {"binning", S.ms_binning},
+        {"grid", S.ms_grid},
+        {"load", in.ms_load}}},
+      {"spheres", {{"total", S.spheres}, {"invalid", S.invalid}, {"skipped_by_reader", in.spheres.invalid}}},
+      {"culling",
+       {{"enabled", in.scene.spheres.culling},
+        {"grid", in.scene.spheres.grid},
+        {"cells", V.cells},
+        {"cells_empty", V.cells_empty},
+        {"cells_view_culled", V.cells_view_culled},
+        {"cells_occluded", V.cells_occluded},
+        {"spheres_view_culled", V.spheres_view_culled},
+        {"spheres_in_occluded_cells", V.spheres_occluded_cells},
+        {"spheres_pyramid_culled", V.spheres_pyramid_culled},
+        {"spheres_offscreen", V.spheres_offscreen},
+        {"occluders", V.occluders},
+        {"spheres_visible", V.spheres_visible}}},
+      {"spheres_scanned", S.spheres_scanned},
+      {"pixel_tests", S.pixel_tests},
+      {"fragments", S.fragments},
+      {"fragments_early_rejected", S.early_rejected},
+      {"depth_writes", S.depth_writes},
+      {"rendered_pixels", S.rendered_pixels},
+      {"bin_entries", S.bin_entries},
+      {"tiles", S.tiles},
+      {"tile_size", S.tile_size},
+      {"mode", to_string(in.scene.spheres.mode)},
+      {"color", to_string(color)},
+      {"image", {{"width", in.scene.settings.width}, {"height", in.scene.settings.height}}},
+      {"peak_rss_bytes", S.peak_rss_bytes},
+      {"memory_budget_bytes", S.memory_budget_bytes},
+  };
+  if (frame_ms.size() > 1) j["frame_ms"] = frame_ms;
+  AtomicFile out(path);
+  {
+    std::ofstream f(out.temp_path());
+    f << j.dump(2) << "\n";
+    if (!f) throw std::runtime_error(path + ": cannot write stats");
+  }
+  out.commit();
+}
+
+void run_spheres(SceneInput& in, const std::string& out_path, const std::string& stats_path, int frames,
+                 const std::string& compression, bool no_culling) {
+  using Clock = std::chrono::steady_clock;
+  SphereScene& sp = in.scene.spheres;
+  if (no_culling) sp.culling = false;
+  const RenderSettings& rs = in.scene.settings;
+  SphereRenderSettings srs = sphere_render_settings(rs, sp);
+  const SphereColorMode color = sp.has_color_mode ? sp.color : default_color_mode(in.spheres);
+  std::vector<glm::vec4> colors;
+  try {
+    colors = sphere_colors(in.spheres, color, rs.tf);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(sp.path + ": " + e.what());
+  }
+  const auto t0 = Clock::now();
+  const SphereGrid g = build_sphere_grid(in.spheres, srs.grid);
+  const double ms_grid = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  const TileGrid grid{rs.width, rs.height, rs.tile_size, 5};
+  const uint64_t held = sphere_set_bytes(in.spheres) + colors.size() * sizeof(glm::vec4);
+  if (render_mpi_enabled()) {
+    std::unique_ptr<ImageTileWriter> w;
+    if (render_mpi_rank() == 0) w = std::make_unique<ImageTileWriter>(out_path, grid, compression);
+    srs.progress = false;
+    SphereRenderer r(in.spheres, colors, g, srs,
+                     held + (w ? w->buffer_bytes_estimate() : 0) + render_mpi_message_bytes(grid, srs.threads));
+    MpiReport report;
+    render_mpi(r, w.get(), &report);
+    if (!w) return;
+    w->commit();
+    SphereStats st = r.stats();
+    st.ms_grid = ms_grid;
+    st.ms_total = st.ms_setup + report.wall_ms;
+    for (uint64_t p : report.peak_rss) st.peak_rss_bytes = std::max(st.peak_rss_bytes, p);
+    if (!stats_path.empty()) write_sphere_stats(stats_path, st, in, color, {});
+    std::printf("wrote %s: %ux%u, %llu spheres drawn of %llu, %llu rendered pixels, %.1f ms\n", out_path.c_str(),
+                rs.width, rs.height, (unsigned long long)st.vis.spheres_visible, (unsigned long long)st.spheres,
+                (unsigned long long)st.rendered_pixels, st.ms_total);
+    return;
+  }
+  ImageTileWriter writer(out_path, grid, compression);
+  std::vector<double> frame_ms;
+  auto renderer = render_frames<SphereRenderer>(
+      frames, writer,
+      [&] { return std::make_unique<SphereRenderer>(in.spheres, colors, g, srs, held + writer.buffer_bytes_estimate()); },
+      [](const SphereRenderer& r) { return r.stats().ms_total; }, &frame_ms);
+  SphereStats st = renderer->stats();
+  st.ms_grid = ms_grid;
+  if (frames > 1) st.ms_total = *std::min_element(frame_ms.begin(), frame_ms.end());
+  if (st.rendered_pixels == 0)
+    std::fprintf(stderr, "zsweep: warning: %s: the image is empty: no sphere is in front of the camera and in view\n",
+                 out_path.c_str());
+  if (!stats_path.empty()) write_sphere_stats(stats_path, st, in, color, frame_ms);
+  std::printf("wrote %s: %ux%u, %llu spheres drawn of %llu, %llu rendered pixels, %.1f ms\n", out_path.c_str(),
+              rs.width, rs.height, (unsigned long long)st.vis.spheres_visible, (unsigned long long)st.spheres,
+              (unsigned long long)st.rendered_pixels, st.ms_total);
+}
+
 void run(const SceneArgs& a, const std::string& out_path, const std::string& stats_path, int frames,
-         const std::string& compression) {
+         const std::string& compression, bool no_culling) {
   using Clock = std::chrono::steady_clock;
   SceneInput in = a.load();
+  if (in.scene.kind == SceneKind::Spheres) {
+    if (!stats_path.empty()) AtomicFile(stats_path).check_writable();
+    return run_spheres(in, out_path, stats_path, frames, compression, no_culling);
+  }
   if (!stats_path.empty()) AtomicFile(stats_path).check_writable();  // not after the render
   if (!render_mpi_enabled() || render_mpi_rank() == 0) warn_nonfinite(in);
   RenderSettings& rs = in.scene.settings;
@@ -214,6 +333,7 @@ void add_render_command(CLI::App& app) {
   auto out = std::make_shared<std::string>(), stats = std::make_shared<std::string>();
   auto frames = std::make_shared<int>(1);
   auto compression = std::make_shared<std::string>();
+  auto no_culling = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (.json), a mesh, or the embedded default scene");
   a->add_options(*cmd, true);
   cmd->add_option("-o,--output", *out, "Output image: .png (8-bit), .exr or .tif (float)")->required();
@@ -226,8 +346,10 @@ void add_render_command(CLI::App& app) {
                   "EXR/TIFF compression. EXR lossless: rle (default: fast), zip (smaller files, ~4x slower to "
                   "write), zips, piz, none; EXR lossy: pxr24, b44, b44a, dwaa, dwab. TIFF (lossless): zip "
                   "(default), lzw, packbits, none");
+  cmd->add_flag("--no-culling", *no_culling,
+                 "Sphere scenes: draw every sphere, without the (lossless) visibility culling");
   add_render_mpi_options(*cmd);  // --mpi, --mpi-schedule (src/cli/render_mpi.h)
-  cmd->callback([a, out, stats, frames, compression] { run(*a, *out, *stats, *frames, *compression); });
+  cmd->callback([a, out, stats, frames, compression, no_culling] { run(*a, *out, *stats, *frames, *compression, *no_culling); });
 }
 
 }  // namespace zs

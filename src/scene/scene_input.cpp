@@ -1,9 +1,13 @@
 #include "scene/scene_input.h"
 
 #include <chrono>
+#include <cmath>
+
+#include <glm/common.hpp>
 #include <stdexcept>
 
 #include "mesh/default_mesh.h"
+#include "spheres/sphere_io.h"
 
 namespace zs {
 
@@ -30,11 +34,21 @@ SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_op
     in.scene = default_scene();
   } else if (input.size() > 5 && input.compare(input.size() - 5, 5, ".json") == 0) {
     in.scene = load_scene(input);
+  } else if (is_sphere_file(input)) {
+    in.scene.kind = SceneKind::Spheres;
+    in.scene.spheres.path = input;
   } else {
     in.scene.mesh_path = input;
     in.scene.mesh_options = mesh_options;
   }
   const auto t0 = std::chrono::steady_clock::now();
+  if (in.scene.kind == SceneKind::Spheres) {
+    in.spheres = read_sphere_file(in.scene.spheres.path);
+    if (in.scene.spheres.radius_scale != 1.0)
+      for (double& r : in.spheres.radii) r *= in.scene.spheres.radius_scale;
+    in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return in;
+  }
   in.mesh = in.scene.mesh_path.empty() ? default_mesh() : read_mesh(in.scene.mesh_path, in.scene.mesh_options);
   in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (in.mesh.num_tets() == 0) throw std::runtime_error(in.scene.mesh_path + ": mesh has no tets");
@@ -43,6 +57,28 @@ SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_op
 
 void finish_scene(SceneInput& in, Projection auto_projection) {
   RenderSettings& rs = in.scene.settings;
+  if (in.scene.kind == SceneKind::Spheres) {
+    // Framed on the box of the drawable spheres, radii included.
+    Bounds b;
+    for (size_t i = 0; i < in.spheres.size(); ++i) {
+      const glm::dvec3& c = in.spheres.centres[i];
+      const double r = in.spheres.radii[i];
+      if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && std::isfinite(r) && r > 0)) continue;
+      b.lo = b.empty ? c - r : glm::min(b.lo, c - r);
+      b.hi = b.empty ? c + r : glm::max(b.hi, c + r);
+      b.empty = false;
+    }
+    if (!in.scene.has_camera) {
+      try {
+        rs.camera = frame_bounds(b, auto_projection, rs.width, rs.height);
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(in.scene.spheres.path + ": " + e.what());
+      }
+    }
+    if (!in.scene.has_transfer_function)
+      rs.tf = default_transfer_function(in.spheres.scalars, 1.0);
+    return;
+  }
   if (!in.scene.has_camera) {
     try {
       rs.camera = auto_camera(in.mesh, auto_projection, rs.width, rs.height);

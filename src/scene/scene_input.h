@@ -8,6 +8,7 @@
 #include "mesh/io/mesh_io.h"
 #include "mesh/tet_mesh.h"
 #include "scene/scene.h"
+#include "spheres/sphere_set.h"
 
 namespace zs {
 
@@ -16,11 +17,13 @@ Scene default_scene();
 
 struct SceneInput {
   Scene scene;
-  TetMesh mesh;
+  TetMesh mesh;        // volume scenes
+  SphereSet spheres;   // sphere scenes (radii already scaled by spheres.radius_scale)
   double ms_load = 0;
 };
 
-// Reads the scene (if any) and its mesh. Throws std::runtime_error naming the
+// Reads the scene (if any) and its mesh or sphere set (a bare .pdb/.sph/.sphb
+// file is a sphere scene with defaults). Throws std::runtime_error naming the
 // file. Camera and transfer function are filled in by finish_scene, after the
 // caller has applied its overrides (the automatic camera depends on the size).
 SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options);
