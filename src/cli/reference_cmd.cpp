@@ -1,8 +1,7 @@
 // `zsweep reference SCENE.json|MESH -o OUT.exr [--stats S.json]`: the
 // independent ray caster every error figure is measured against.
-// `zsweep reference FILE.sph|FILE.pdb -o OUT.exr`: the sphere renderers'
-// Embree reference, with an automatic camera and the default shading (a
-// scene format for spheres is still to come).
+// Sphere scenes and files (.pdb/.sph/.sphb): the sphere renderers' Embree
+// reference, on the scene's camera, colours and shading (RGBA and Z).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,76 +17,70 @@
 #include "reference/reference_renderer.h"
 #include "reference/sphere_reference.h"
 #include "spheres/sphere_colors.h"
-#include "spheres/sphere_io.h"
+#include "image/tile_writer.h"
 #include "util/atomic_file.h"
 
 namespace zs {
 
 namespace {
 
-// Looking down −z with y up at the bounding box of the drawable spheres,
-// which fills the image with a 5 % margin; the eye (or the orthographic eye
-// plane) well in front of the nearest sphere.
-Camera sphere_auto_camera(const SphereSet& s, Projection p, uint32_t width, uint32_t height) {
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (size_t i = 0; i < s.size(); ++i) {
-    const double r = s.radii[i];
-    const glm::dvec3& c = s.centres[i];
-    if (!(r > 0) || !std::isfinite(r) || !std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) continue;
-    lo = glm::min(lo, c - r), hi = glm::max(hi, c + r);
+// Writes RGBA and, for EXR/TIFF, the Z channel, through the tile writer
+// (as `render` writes them).
+void write_rgba_z(const std::string& path, const Image& img, const std::vector<float>& z) {
+  const TileGrid grid{img.width, img.height, 64, 5};
+  ImageTileWriter w(path, grid);
+  std::vector<float> buf;
+  for (uint32_t t = 0; t < grid.count(); ++t) {
+    const TileRect r = grid.rect(t);
+    buf.resize(size_t(r.width()) * r.height() * 5);
+    for (uint32_t y = r.y0; y < r.y1; ++y)
+      for (uint32_t x = r.x0; x < r.x1; ++x) {
+        float* o = &buf[(size_t(y - r.y0) * r.width() + (x - r.x0)) * 5];
+        std::copy(img.at(x, y), img.at(x, y) + 4, o);
+        o[4] = z[size_t(y) * img.width + x];
+      }
+    w.tile(r, buf.data());
   }
-  if (!(lo.x <= hi.x)) lo = glm::dvec3(-1), hi = glm::dvec3(1);
-  const glm::dvec3 c = 0.5 * (lo + hi), e = hi - lo;
-  const double aspect = double(width) / double(height), diag = std::max(glm::length(e), 1e-300);
-  Camera cam;
-  cam.projection = p;
-  cam.target = c;
-  cam.up = {0, 1, 0};
-  cam.height = 1.05 * std::max(e.y, e.x / aspect);
-  if (!(cam.height > 0)) cam.height = diag;
-  cam.fov_y = 30.0;
-  if (p == Projection::Orthographic) {
-    cam.eye = {c.x, c.y, hi.z + 0.5 * diag};
-  } else {
-    // The bounding sphere fits the narrower field of view.
-    const double half = std::atan(std::tan(cam.fov_y * M_PI / 360.0) * std::min(1.0, aspect));
-    cam.eye = c + glm::dvec3(0, 0, 0.55 * diag / std::sin(half));
-  }
-  return cam;
+  w.commit();
 }
 
-// Colours as the sphere renderer's default mode picks them; a scalar goes
-// through a blue–white–red ramp over its finite range (non-finite: grey).
-std::vector<glm::vec4> default_sphere_colors(const SphereSet& s) {
-  const SphereColorMode mode = default_color_mode(s);
-  if (mode != SphereColorMode::Scalar) return sphere_colors(s, mode, TransferFunction());
-  double lo = INFINITY, hi = -INFINITY;
-  for (double v : s.scalars)
-    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-  if (!(lo < hi)) lo = (std::isfinite(lo) ? lo : 0) - 1, hi = lo + 2;
-  const TransferFunction tf({{lo, 0.23, 0.30, 0.75}, {0.5 * lo + 0.5 * hi, 0.87, 0.87, 0.87}, {hi, 0.71, 0.02, 0.15}},
-                            {{lo, 1.0}, {hi, 1.0}});
-  std::vector<glm::vec4> col = sphere_colors(s, mode, tf);
-  for (size_t i = 0; i < s.size(); ++i)
-    if (!std::isfinite(s.scalars[i])) col[i] = element_color(0);
-  return col;
-}
-
-void reference_spheres(const SceneArgs& a, const std::string& out) {
-  Projection p = Projection::Orthographic;
-  if (a.projection == "perspective") p = Projection::Perspective;
-  else if (!a.projection.empty() && a.projection != "orthographic")
-    throw std::runtime_error("--projection must be orthographic or perspective");
-  const SphereSet set = read_sphere_file(a.input);
+// The sphere scene as `render` sees it (camera, colours, shading,
+// background), traced by Embree with exact hits.
+void reference_spheres(SceneInput& in, const std::string& out, const std::string& stats, int threads) {
   AtomicFile(out).check_writable();
-  const uint32_t w = a.width ? a.width : 1024, h = a.height ? a.height : 1024;
-  const View view(sphere_auto_camera(set, p, w, h), w, h);
-  const double background[4] = {0, 0, 0, 0};
-  const SphereReferenceImage img =
-      render_sphere_reference(set, default_sphere_colors(set), Shading{}, view, background, a.threads);
-  write_image(out, img.rgba);
+  if (!stats.empty()) AtomicFile(stats).check_writable();
+  const RenderSettings& rs = in.scene.settings;
+  const SphereScene& sp = in.scene.spheres;
+  if (sp.mode != SphereMode::Opaque)
+    throw std::runtime_error(std::string("render.mode \"") + to_string(sp.mode) +
+                             "\": the reference traces opaque scenes only today");
+  const SphereColorMode mode = sp.has_color_mode ? sp.color : default_color_mode(in.spheres);
+  std::vector<glm::vec4> colors;
+  try {
+    colors = sphere_colors(in.spheres, mode, rs.tf);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(sp.path + ": " + e.what());
+  }
+  const View view(rs.camera, rs.width, rs.height);
+  const SphereReferenceImage img = render_sphere_reference(in.spheres, colors, sp.shading, view, rs.background, threads);
+  write_rgba_z(out, img.rgba, img.z);
+  if (!stats.empty()) {
+    nlohmann::json j = {{"time_ms", {{"build", img.ms_build}, {"trace", img.ms_trace}, {"total", img.ms_build + img.ms_trace}}},
+                        {"spheres", in.spheres.size()},
+                        {"invalid", img.invalid},
+                        {"pixels_hit", img.hits},
+                        {"image", {{"width", rs.width}, {"height", rs.height}}}};
+    AtomicFile f(stats);
+    {
+      std::ofstream o(f.temp_path());
+      o << j.dump(2) << "\n";
+      if (!o) throw std::runtime_error(stats + ": cannot write stats");
+    }
+    f.commit();
+  }
   std::printf("wrote %s: %ux%u, %zu spheres (%zu left out), %llu pixels hit, BVH %.1f ms, trace %.1f ms\n",
-              out.c_str(), w, h, set.size(), img.invalid, (unsigned long long)img.hits, img.ms_build, img.ms_trace);
+              out.c_str(), rs.width, rs.height, in.spheres.size(), img.invalid, (unsigned long long)img.hits,
+              img.ms_build, img.ms_trace);
 }
 
 }  // namespace
@@ -97,17 +90,16 @@ void add_reference_command(CLI::App& app) {
   auto out = std::make_shared<std::string>(), stats = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
       "reference", "Ground-truth image: an independent ray caster (tet walk, exact integration, no early termination; "
-      "sphere files: Embree with exact hits, automatic camera)");
+      "sphere scenes: Embree with exact hits)");
   a->add_options(*cmd, false);
   cmd->add_option("-o,--output", *out, "Output image (.exr or .tif keep the float values)")->required();
   cmd->add_option("--stats", *stats, "Write ray-casting statistics as JSON");
   cmd->callback([a, out, stats] {
-    if (is_sphere_file(a->input)) {
-      if (!stats->empty()) throw std::runtime_error("--stats is for tet meshes, not sphere files");
-      reference_spheres(*a, *out);
+    SceneInput in = a->load();
+    if (in.scene.kind == SceneKind::Spheres) {
+      reference_spheres(in, *out, *stats, in.scene.settings.threads);
       return;
     }
-    SceneInput in = a->load();
     AtomicFile(*out).check_writable();  // before minutes of ray casting
     if (!stats->empty()) AtomicFile(*stats).check_writable();
     const Topology topo = build_topology(in.mesh);

@@ -23,5 +23,8 @@ void write_image(const std::string& path, const Image& img, const std::string& c
 // multi-threaded renders (docs/benchmarks.md) — and the library's own for TIFF. "" for formats without a choice.
 std::string output_compression(const std::string& format, const std::string& requested, const std::string& path);
 Image read_image(const std::string& path);
+// The view-depth channel "Z" of an EXR/TIFF written by a sphere render or
+// reference (+inf where nothing was hit); empty when the file has none.
+std::vector<float> read_depth_channel(const std::string& path);
 
 }  // namespace zs

@@ -68,4 +68,18 @@ Image read_image(const std::string& path) {
   return img;
 }
 
+std::vector<float> read_depth_channel(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::runtime_error(path + ": cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  int zc = -1;
+  for (int c = 0; c < spec.nchannels; ++c)
+    if (spec.channelnames[size_t(c)] == "Z") zc = c;
+  if (zc < 0) return {};
+  std::vector<float> z(size_t(spec.width) * spec.height);
+  if (!in->read_image(0, 0, zc, zc + 1, OIIO::TypeDesc::FLOAT, z.data()))
+    throw std::runtime_error(path + ": cannot read image: " + in->geterror());
+  return z;
+}
+
 }  // namespace zs

@@ -1,5 +1,6 @@
 #include "spheres/sphere_colors.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace zs {
@@ -60,6 +61,10 @@ std::vector<glm::vec4> sphere_colors(const SphereSet& s, SphereColorMode mode, c
       if (!s.has_scalars()) throw std::runtime_error("spheres.color is \"scalar\" but the sphere set has no scalar");
       for (size_t i = 0; i < s.size(); ++i) {
         const double v = s.scalars[i];
+        if (!std::isfinite(v)) {  // a degenerate sphere: drawn grey, opaque
+          out[i] = element_color(0);
+          continue;
+        }
         const auto c = tf.color(v);
         out[i] = {float(c[0]), float(c[1]), float(c[2]), float(tf.opacity(v))};
       }

@@ -26,7 +26,7 @@ SphereColorMode default_color_mode(const SphereSet& s);
 // unknown: grey), opacity 1.
 glm::vec4 element_color(unsigned atomic_number);
 
-// One RGBA per sphere. Throws std::runtime_error when the set lacks what the
+// One RGBA per sphere (a non-finite scalar: grey, opaque). Throws std::runtime_error when the set lacks what the
 // mode needs (no RGBA, no elements, no scalar).
 std::vector<glm::vec4> sphere_colors(const SphereSet& s, SphereColorMode mode, const TransferFunction& tf);
 

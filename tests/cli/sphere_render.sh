@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# `zsweep render` on sphere scenes and files: the image and its Z channel equal
+# the Embree reference's (same camera, colours and shading; both projections);
+# threads, tile size and --no-culling change no pixel; a sphere scene's keys
+# are checked; bad scenes fail in one line and leave no output.
+set -u
+zsweep=$1; src=$2
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail=0
+same() {  # a b what: pixel- and depth-identical
+  "$zsweep" compare "$1" "$2" --json >"$tmp/cmp" 2>&1
+  grep -q '"max_abs": 0.0,' "$tmp/cmp" && grep -q '"coverage_mismatches": 0,' "$tmp/cmp" \
+    && grep -q '"max_rel": 0.0' "$tmp/cmp" || { echo "FAIL $3: $(tr -d '\n' <"$tmp/cmp")"; fail=1; }
+}
+close() {  # a b what: within 1e-5 in colour, depth within 1e-6 relative, at most 3 grazing pixels
+  "$zsweep" compare "$1" "$2" --json >"$tmp/cmp" 2>&1
+  python3 - "$tmp/cmp" "$3" <<'PY' || fail=1
+import json, sys
+j = json.load(open(sys.argv[1]))
+ok = j["max_abs"] <= 1e-5 and "z" in j and j["z"]["coverage_mismatches"] <= 3 and j["z"]["max_rel"] <= 1e-6
+if not ok:
+    print("FAIL", sys.argv[2], j)
+sys.exit(0 if ok else 1)
+PY
+}
+
+# Render against the reference: a real protein (when pymol-data is there)
+# and the small test files.
+inputs=("$src/tests/data/spheres/small.pdb" "$src/tests/data/spheres/small.sph")
+[[ -f /usr/share/pymol/data/demo/1tii.pdb ]] && inputs+=(/usr/share/pymol/data/demo/1tii.pdb)
+for f in "${inputs[@]}"; do
+  for p in orthographic perspective; do
+    n=$(basename "$f").$p
+    "$zsweep" render "$f" -o "$tmp/$n.exr" --width 120 --height 90 --projection $p >/dev/null 2>"$tmp/err" \
+      || { echo "FAIL render $n: $(cat "$tmp/err")"; fail=1; continue; }
+    "$zsweep" reference "$f" -o "$tmp/$n.ref.exr" --width 120 --height 90 --projection $p >/dev/null 2>"$tmp/err" \
+      || { echo "FAIL reference $n: $(cat "$tmp/err")"; fail=1; continue; }
+    close "$tmp/$n.exr" "$tmp/$n.ref.exr" "$n vs reference"
+  done
+done
+
+# A scene: per-sphere RGBA, flat shading, perspective, a camera close in.
+cat >"$tmp/set.sph" <<'S'
+0 0 0 1 1 0 0 1
+1.2 0 0.3 0.8 0 1 0 0.5
+-0.9 0.7 -0.4 0.6 0 0 1 1
+0.2 -1.1 0.8 0.5 1 1 0 1
+S
+cat >"$tmp/scene.json" <<'S'
+{ "spheres": {"path": "set.sph", "color": "rgba", "radius_scale": 1.0},
+  "image": {"width": 96, "height": 80, "background": [0, 0, 0, 1]},
+  "camera": {"projection": "perspective", "eye": [0.5, 0.4, 5], "target": [0, 0, 0], "fov_y": 40},
+  "shading": {"model": "phong", "light_direction": [0.3, -0.2, -1], "ambient": 0.1, "diffuse": 0.8,
+              "specular": 0.5, "shininess": 20},
+  "render": {"mode": "opaque", "grid": 4, "culling": true} }
+S
+"$zsweep" render "$tmp/scene.json" -o "$tmp/s1.exr" --threads 1 --stats "$tmp/s1.json" >/dev/null || fail=1
+"$zsweep" render "$tmp/scene.json" -o "$tmp/s2.exr" --threads 2 --tile-size 24 >/dev/null || fail=1
+"$zsweep" render "$tmp/scene.json" -o "$tmp/s3.exr" --no-culling >/dev/null || fail=1
+"$zsweep" reference "$tmp/scene.json" -o "$tmp/sref.exr" >/dev/null || fail=1
+same "$tmp/s1.exr" "$tmp/s2.exr" "threads and tiles"
+same "$tmp/s1.exr" "$tmp/s3.exr" "--no-culling"
+close "$tmp/s1.exr" "$tmp/sref.exr" "scene vs reference"
+grep -q '"renderer": "spheres"' "$tmp/s1.json" && grep -q '"spheres_visible": 4' "$tmp/s1.json" \
+  || { echo "FAIL stats: $(cat "$tmp/s1.json")"; fail=1; }
+"$zsweep" render "$tmp/scene.json" -o "$tmp/s.png" >/dev/null && [[ -s "$tmp/s.png" ]] || { echo "FAIL png"; fail=1; }
+
+# Bad scenes: one line naming the scene, exit 1, no output file.
+bad() {  # name json expected-substring
+  printf '%s\n' "$2" >"$tmp/$1.json"
+  "$zsweep" render "$tmp/$1.json" -o "$tmp/$1.exr" >"$tmp/out" 2>"$tmp/err"
+  local rc=$?
+  if [[ $rc -ne 1 || -e "$tmp/$1.exr" || $(wc -l <"$tmp/err") -ne 1 ]] || ! grep -qF -- "$3" "$tmp/err"; then
+    echo "FAIL $1: rc $rc, stderr: $(cat "$tmp/err")"; fail=1
+  fi
+}
+bad both '{"mesh": "m.off", "spheres": "set.sph"}' "'mesh' or 'spheres', not both"
+bad shading_on_volume '{"mesh": "m.off", "shading": {}}' "'shading' is for sphere scenes"
+bad unknown_key '{"spheres": "set.sph", "render": {"scan": "span"}}' "render"
+bad bad_mode '{"spheres": "set.sph", "render": {"mode": "glass"}}' "render.mode must be"
+bad bad_color '{"spheres": {"path": "set.sph", "color": "scalar"}}' "no scalar"
+bad not_built '{"spheres": "set.sph", "render": {"mode": "sorted"}}' "only \"opaque\" renders today"
+bad missing_file '{"spheres": "nowhere.sph"}' "nowhere.sph"
+bad bad_light '{"spheres": "set.sph", "shading": {"light_direction": [0, 0, 0]}}' "light_direction"
+exit $fail
