@@ -21,13 +21,16 @@ uint64_t OcclusionMap::bytes() const {
   return b;
 }
 
-void OcclusionMap::write_disc(double X, double Y, double rho, double z) {
+void OcclusionMap::write_disc(double X, double Y, double rho, double z, int row0, int row1) {
   // Shrunk a little so a pixel centre on the rim (where the exact surface
   // meets the disc's depth) is never claimed.
   const double r = rho * (1 - 1e-6);
   if (!(r > 0) || !std::isfinite(X) || !std::isfinite(Y)) return;
   const double r2 = r * r;
-  const int ty0 = std::max(0, int(std::floor((Y - r) / s_))), ty1 = std::min(int(th_) - 1, int(std::ceil((Y + r) / s_)));
+  const double ylo = std::floor((Y - r) / s_), yhi = std::ceil((Y + r) / s_);
+  if (!(yhi >= row0 && ylo <= row1)) return;
+  const int ty0 = std::max({0, row0, int(std::max(ylo, -1.0))});
+  const int ty1 = std::min({int(th_) - 1, row1, int(std::min(yhi, 2e9))});
   std::vector<double>& m = level_[0];
   for (int ty = ty0; ty <= ty1; ++ty) {
     // The block's first and last pixel-centre rows; both must be inside.

@@ -23,8 +23,9 @@ class OcclusionMap {
  public:
   OcclusionMap(uint32_t width, uint32_t height, uint32_t max_side = 1024);
 
-  // Disc of radius rho pixels centred at (X, Y) (pixel coordinates), depth z.
-  void write_disc(double X, double Y, double rho, double z);
+  // Disc of radius rho pixels centred at (X, Y) (pixel coordinates), depth z;
+  // only texel rows [row0, row1] are written (threads draw bands apart).
+  void write_disc(double X, double Y, double rho, double z, int row0 = 0, int row1 = 1 << 30);
   // True when every texel over pixel-centre range [i0, i1] x [j0, j1] holds a
   // depth strictly nearer than z: anything whose surface lies at depth ≥ z
   // inside that box is hidden. Reads the map itself (used while it grows).

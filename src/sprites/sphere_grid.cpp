@@ -8,7 +8,8 @@
 namespace zs {
 
 uint64_t SphereGrid::bytes() const {
-  return offset.size() * 8 + ids.size() * 4 + (lo.size() + hi.size()) * sizeof(glm::dvec3);
+  return offset.size() * 8 + ids.size() * 4 + centre.size() * sizeof(glm::dvec3) + radius.size() * 8 +
+         (lo.size() + hi.size()) * sizeof(glm::dvec3);
 }
 
 SphereGrid build_sphere_grid(const SphereSet& s, uint32_t n) {
@@ -44,12 +45,16 @@ SphereGrid build_sphere_grid(const SphereSet& s, uint32_t n) {
   }
   for (uint32_t k = 0; k < cells; ++k) g.offset[k + 1] += g.offset[k];
   g.ids.resize(g.offset[cells]);
+  g.centre.resize(g.offset[cells]);
+  g.radius.resize(g.offset[cells]);
   std::vector<uint64_t> next(g.offset.begin(), g.offset.end() - 1);
   g.lo.assign(cells, glm::dvec3(INFINITY));
   g.hi.assign(cells, glm::dvec3(-INFINITY));
   for (size_t i = 0; i < s.size(); ++i) {
     if (cell[i] == UINT32_MAX) continue;
     const uint32_t k = cell[i];
+    g.centre[next[k]] = s.centres[i];
+    g.radius[next[k]] = s.radii[i];
     g.ids[next[k]++] = uint32_t(i);
     const glm::dvec3 r(s.radii[i]);
     g.lo[k] = glm::min(g.lo[k], s.centres[i] - r);

@@ -18,6 +18,10 @@ struct SphereGrid {
   uint32_t n = 0;                  // cells per axis (n³ cells)
   std::vector<uint64_t> offset;    // n³ + 1: cell k holds ids[offset[k], offset[k+1])
   std::vector<uint32_t> ids;       // sphere ids, grouped by cell, ascending within a cell
+  // Each entry's centre and radius, in the same order: the per-frame loops
+  // stream through these instead of gathering from the set.
+  std::vector<glm::dvec3> centre;
+  std::vector<double> radius;
   std::vector<glm::dvec3> lo, hi;  // per cell: the box of its spheres (empty cells: lo > hi)
   uint64_t invalid = 0;            // spheres left out: non-finite centre, radius not > 0 or not finite
 

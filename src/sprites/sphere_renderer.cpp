@@ -7,7 +7,10 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "raster/depth_buffer.h"
 #include "raster/sphere_span.h"
@@ -46,18 +49,19 @@ uint64_t sphere_set_bytes(const SphereSet& s) {
 struct SphereRenderer::Impl {
   const SphereSet& s;
   const std::vector<glm::vec4>& colors;
+  const SphereGrid& g;
   const SphereRenderSettings& rs;
   View view;
   CameraPlane cam;
   TileGrid grid;
   SphereStats setup, totals;
   std::vector<uint64_t> bin_offset;  // tiles + 1
-  std::vector<uint32_t> bin_ids;     // sphere ids per tile, front-to-back cell order
+  std::vector<uint32_t> bin_ids;     // grid entries per tile, front-to-back cell order
   tbb::enumerable_thread_specific<TileState> states;
 
-  Impl(const SphereSet& spheres, const std::vector<glm::vec4>& c, const SphereGrid& g, const SphereRenderSettings& settings,
+  Impl(const SphereSet& spheres, const std::vector<glm::vec4>& c, const SphereGrid& grid_, const SphereRenderSettings& settings,
        uint64_t extra_bytes)
-      : s(spheres), colors(c), rs(settings), view(settings.camera, settings.width, settings.height),
+      : s(spheres), colors(c), g(grid_), rs(settings), view(settings.camera, settings.width, settings.height),
         cam(camera_plane(view)) {
     const auto t_start = Clock::now();
     if (rs.mode != SphereMode::Opaque)
@@ -89,28 +93,41 @@ struct SphereRenderer::Impl {
     check(shared + s.size() * 4);
 
     const auto t_vis = Clock::now();
-    std::vector<uint32_t> visible = visible_spheres(s, g, view, rs.culling, &S.vis);
+    std::vector<uint32_t> visible = visible_spheres(s, g, view, rs.culling, &S.vis, threads);
     S.ms_visibility = ms_since(t_vis);
     shared += visible.size() * 4 + S.vis.map_bytes;
 
-    // Bins: count, then fill, in the visible order.
+    // Bins, in the visible order: each sphere's tile range (in parallel),
+    // then count and fill.
     const auto t_bin = Clock::now();
     const Viewport image{0, 0, int(rs.width), int(rs.height)};
     const uint32_t cols = grid.cols(), size = grid.size;
-    auto tile_box = [&](uint32_t id, uint32_t* c0, uint32_t* c1, uint32_t* r0, uint32_t* r1) {
-      const glm::dvec3 c = to_camera(view, s.centres[id]);
-      const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, s.radii[id]);
-      int i0, i1, j0, j1;
-      if (!sphere_pixel_range(su, image, &i0, &i1, &j0, &j1)) return false;
-      *c0 = uint32_t(i0) / size, *c1 = uint32_t(i1) / size, *r0 = uint32_t(j0) / size, *r1 = uint32_t(j1) / size;
-      return true;
+    struct Box {
+      uint32_t c0, c1, r0, r1;  // c0 > c1: no pixel centre of the image
     };
+    std::vector<Box> boxes(visible.size());
+    shared += boxes.size() * sizeof(Box);
+    check(shared);
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, visible.size(), 4096), [&](const tbb::blocked_range<size_t>& br) {
+        for (size_t q = br.begin(); q < br.end(); ++q) {
+          const uint32_t e = visible[q];
+          const glm::dvec3 c = to_camera(view, g.centre[e]);
+          const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, g.radius[e]);
+          int i0, i1, j0, j1;
+          if (!sphere_pixel_range(su, image, &i0, &i1, &j0, &j1)) {
+            boxes[q] = {1, 0, 0, 0};
+            continue;
+          }
+          boxes[q] = {uint32_t(i0) / size, uint32_t(i1) / size, uint32_t(j0) / size, uint32_t(j1) / size};
+        }
+      });
+    });
     bin_offset.assign(uint64_t(grid.count()) + 1, 0);
-    uint32_t c0, c1, r0, r1;
-    for (uint32_t id : visible)
-      if (tile_box(id, &c0, &c1, &r0, &r1))
-        for (uint32_t r = r0; r <= r1; ++r)
-          for (uint32_t c = c0; c <= c1; ++c) ++bin_offset[uint64_t(r) * cols + c + 1];
+    for (const Box& b : boxes)
+      for (uint32_t r = b.r0; b.c0 <= b.c1 && r <= b.r1; ++r)
+        for (uint32_t c = b.c0; c <= b.c1; ++c) ++bin_offset[uint64_t(r) * cols + c + 1];
     for (uint64_t t = 0; t < grid.count(); ++t) bin_offset[t + 1] += bin_offset[t];
     S.bin_entries = bin_offset.back();
     shared += S.bin_entries * 4 + bin_offset.size() * 8;
@@ -118,10 +135,11 @@ struct SphereRenderer::Impl {
     S.shared_bytes = shared;
     bin_ids.resize(S.bin_entries);
     std::vector<uint64_t> next(bin_offset.begin(), bin_offset.end() - 1);
-    for (uint32_t id : visible)
-      if (tile_box(id, &c0, &c1, &r0, &r1))
-        for (uint32_t r = r0; r <= r1; ++r)
-          for (uint32_t c = c0; c <= c1; ++c) bin_ids[next[uint64_t(r) * cols + c]++] = id;
+    for (size_t q = 0; q < visible.size(); ++q) {
+      const Box& b = boxes[q];
+      for (uint32_t r = b.r0; b.c0 <= b.c1 && r <= b.r1; ++r)
+        for (uint32_t c = b.c0; c <= b.c1; ++c) bin_ids[next[uint64_t(r) * cols + c]++] = visible[q];
+    }
     S.ms_binning = ms_since(t_bin);
     S.ms_setup = ms_since(t_start);
   }
@@ -134,12 +152,12 @@ struct SphereRenderer::Impl {
     ts.depth.reset(w, h, 1);
     const Viewport vp{int(r.x0), int(r.y0), int(r.x1), int(r.y1)};
     for (uint64_t e = bin_offset[t]; e < bin_offset[t + 1]; ++e) {
-      const uint32_t id = bin_ids[e];
-      const glm::dvec3 c = to_camera(view, s.centres[id]);
-      const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, s.radii[id]);
+      const uint32_t entry = bin_ids[e], id = g.ids[entry];
+      const glm::dvec3 c = to_camera(view, g.centre[entry]);
+      const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, g.radius[entry]);
       // No surface of the sphere is nearer than this (a little below its
       // nearest depth, for rounding): a pixel already nearer cannot change.
-      const double zmin = c.z - s.radii[id];
+      const double zmin = c.z - g.radius[entry];
       const double z_reject = zmin - 1e-9 * std::abs(zmin);
       ts.spans.clear();
       ScanCounters sc;

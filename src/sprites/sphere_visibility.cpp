@@ -2,11 +2,17 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <numeric>
 
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "sprites/occlusion_map.h"
 
@@ -67,41 +73,16 @@ bool box_screen_range(const View& v, const glm::dvec3& lo, const glm::dvec3& hi,
   return true;
 }
 
-}  // namespace
-
-CameraPlane camera_plane(const View& v) {
-  CameraPlane c;
-  c.perspective = v.perspective();
-  c.sx = v.scale_x(), c.sy = v.scale_y(), c.ox = v.offset_x(), c.oy = v.offset_y();
-  return c;
-}
-
-std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, const View& view, bool culling,
-                                      VisibilityStats* st) {
-  VisibilityStats local;
-  VisibilityStats& S = st ? *st : local;
-  S = {};
-  S.cells = g.cells();
-  const CameraPlane cam = camera_plane(view);
-  const Viewport image{0, 0, int(view.width()), int(view.height())};
-  std::vector<uint32_t> out;
-  auto on_screen = [&](uint32_t id, SphereSetup* su, int* i0, int* i1, int* j0, int* j1) {
-    const glm::dvec3 c = to_camera(view, s.centres[id]);
-    *su = setup_sphere(cam, c.x, c.y, c.z, s.radii[id]);
-    return sphere_pixel_range(*su, image, i0, i1, j0, j1);
+// Steps 1 and 2: view-volume culling, then occlusion culling cells nearest
+// first, drawing each surviving cell's discs into `map`.
+void cull_cells(const SphereGrid& g, const View& view, OcclusionMap& map, std::vector<uint32_t>* survivors,
+                VisibilityStats* st, int threads) {
+  VisibilityStats& S = *st;
+  struct Disc {
+    double X, Y, rho, z;  // rho 0: not an occluder
   };
-  if (!culling) {
-    for (uint32_t k = 0; k < g.cells(); ++k)
-      for (uint64_t e = g.offset[k]; e < g.offset[k + 1]; ++e) {
-        SphereSetup su;
-        int i0, i1, j0, j1;
-        if (on_screen(g.ids[e], &su, &i0, &i1, &j0, &j1)) out.push_back(g.ids[e]);
-        else ++S.spheres_offscreen;
-      }
-    S.spheres_visible = out.size();
-    return out;
-  }
-
+  std::vector<Disc> discs;
+  tbb::task_arena arena(std::max(1, threads));
   // 1. View-volume culling of the cells.
   auto t0 = Clock::now();
   const auto planes = view_planes(view);
@@ -140,8 +121,6 @@ std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, c
   std::vector<size_t> order(cells.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cr[a].znear < cr[b].znear; });
-  OcclusionMap map(view.width(), view.height());
-  std::vector<uint32_t> survivors;  // cells, in visiting order
   for (size_t q : order) {
     const uint32_t k = cells[q];
     const CellRange& c = cr[q];
@@ -150,42 +129,117 @@ std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, c
       S.spheres_occluded_cells += g.count(k);
       continue;
     }
-    survivors.push_back(k);
+    survivors->push_back(k);
     // Its spheres become occluders: the disc through each centre, for the
-    // spheres wholly in front of the eye (plane).
-    for (uint64_t e = g.offset[k]; e < g.offset[k + 1]; ++e) {
-      const uint32_t id = g.ids[e];
-      const glm::dvec3 cc = to_camera(view, s.centres[id]);
-      const double R = s.radii[id];
-      if (!(cc.z - R > 0)) continue;
-      const double inv = view.perspective() ? 1.0 / cc.z : 1.0;
-      map.write_disc(view.scale_x() * cc.x * inv + view.offset_x(), view.offset_y() - view.scale_y() * cc.y * inv,
-                     view.scale_x() * R * inv, cc.z);
-      ++S.occluders;
-    }
+    // spheres wholly in front of the eye (plane). The discs are set up in
+    // parallel, then drawn by bands of map rows, one band per task: a texel
+    // takes the minimum of its discs, so the map does not depend on the
+    // split.
+    const uint64_t e0 = g.offset[k], n = g.count(k);
+    discs.resize(n);
+    std::atomic<uint64_t> drawn{0};
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 1024), [&](const tbb::blocked_range<uint64_t>& br) {
+        uint64_t m = 0;
+        for (uint64_t q = br.begin(); q < br.end(); ++q) {
+          const glm::dvec3 cc = to_camera(view, g.centre[e0 + q]);
+          const double R = g.radius[e0 + q];
+          Disc& d = discs[q];
+          if (!(cc.z - R > 0)) {
+            d.rho = 0;
+            continue;
+          }
+          const double inv = view.perspective() ? 1.0 / cc.z : 1.0;
+          d = {view.scale_x() * cc.x * inv + view.offset_x(), view.offset_y() - view.scale_y() * cc.y * inv,
+               view.scale_x() * R * inv, cc.z};
+          ++m;
+        }
+        drawn += m;
+      });
+      const int rows = int(map.texels_y()), bands = std::min(rows, 4 * threads);
+      tbb::parallel_for(0, bands, [&](int b) {
+        const int r0 = int(int64_t(rows) * b / bands), r1 = int(int64_t(rows) * (b + 1) / bands) - 1;
+        for (const Disc& d : discs)
+          if (d.rho > 0) map.write_disc(d.X, d.Y, d.rho, d.z, r0, r1);
+      });
+    });
+    S.occluders += drawn;
   }
   S.ms_occlusion = ms_since(t0);
+}
 
-  // 3. The pyramid test per sphere of the surviving cells.
-  t0 = Clock::now();
-  map.build_pyramid();
-  S.map_bytes = map.bytes();
-  for (uint32_t k : survivors)
-    for (uint64_t e = g.offset[k]; e < g.offset[k + 1]; ++e) {
-      const uint32_t id = g.ids[e];
-      SphereSetup su;
-      int i0, i1, j0, j1;
-      if (!on_screen(id, &su, &i0, &i1, &j0, &j1)) {
-        ++S.spheres_offscreen;
-        continue;
+}  // namespace
+
+CameraPlane camera_plane(const View& v) {
+  CameraPlane c;
+  c.perspective = v.perspective();
+  c.sx = v.scale_x(), c.sy = v.scale_y(), c.ox = v.offset_x(), c.oy = v.offset_y();
+  return c;
+}
+
+std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, const View& view, bool culling,
+                                      VisibilityStats* st, int threads) {
+  VisibilityStats local;
+  VisibilityStats& S = st ? *st : local;
+  S = {};
+  S.cells = g.cells();
+  const CameraPlane cam = camera_plane(view);
+  const Viewport image{0, 0, int(view.width()), int(view.height())};
+  std::vector<uint32_t> out;
+  // Entry e's sphere on screen: its set-up, camera-space centre and pixel range.
+  auto on_screen = [&](uint64_t e, glm::dvec3* c, int* i0, int* i1, int* j0, int* j1) {
+    *c = to_camera(view, g.centre[e]);
+    const SphereSetup su = setup_sphere(cam, c->x, c->y, c->z, g.radius[e]);
+    return sphere_pixel_range(su, image, i0, i1, j0, j1);
+  };
+  std::vector<uint32_t> survivors;  // cells whose spheres are tested one by one, in visiting order
+  std::unique_ptr<OcclusionMap> map;
+  if (!culling) {
+    for (uint32_t k = 0; k < g.cells(); ++k)
+      if (g.count(k) > 0) survivors.push_back(k);
+  } else {
+    map = std::make_unique<OcclusionMap>(view.width(), view.height());
+    cull_cells(g, view, *map, &survivors, &S, threads);
+  }
+
+  // 3. The pyramid test per sphere of the surviving cells, cells in parallel;
+  // the survivors keep the cells' order whatever the thread count.
+  auto t0 = Clock::now();
+  if (map) {
+    map->build_pyramid();
+    S.map_bytes = map->bytes();
+  }
+  std::vector<std::vector<uint32_t>> kept(survivors.size());
+  tbb::combinable<std::array<uint64_t, 2>> counts([] { return std::array<uint64_t, 2>{0, 0}; });
+  tbb::task_arena arena(std::max(1, threads));
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), survivors.size(), [&](size_t q) {
+      const uint32_t k = survivors[q];
+      std::array<uint64_t, 2>& n = counts.local();  // offscreen, pyramid-culled
+      for (uint64_t e = g.offset[k]; e < g.offset[k + 1]; ++e) {
+        glm::dvec3 c;
+        int i0, i1, j0, j1;
+        if (!on_screen(e, &c, &i0, &i1, &j0, &j1)) {
+          ++n[0];
+          continue;
+        }
+        const double znear = c.z - g.radius[e];
+        if (map && znear > 0 && map->hidden_pyramid(i0, i1, j0, j1, znear)) {
+          ++n[1];
+          continue;
+        }
+        kept[q].push_back(uint32_t(e));
       }
-      const double znear = to_camera(view, s.centres[id]).z - s.radii[id];
-      if (znear > 0 && map.hidden_pyramid(i0, i1, j0, j1, znear)) {
-        ++S.spheres_pyramid_culled;
-        continue;
-      }
-      out.push_back(id);
-    }
+    });
+  });
+  counts.combine_each([&](const std::array<uint64_t, 2>& n) {
+    S.spheres_offscreen += n[0];
+    S.spheres_pyramid_culled += n[1];
+  });
+  size_t total = 0;
+  for (const auto& v : kept) total += v.size();
+  out.reserve(total);
+  for (const auto& v : kept) out.insert(out.end(), v.begin(), v.end());
   S.ms_pyramid = ms_since(t0);
   S.spheres_visible = out.size();
   return out;

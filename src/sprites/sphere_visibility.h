@@ -45,9 +45,11 @@ inline glm::dvec3 to_camera(const View& v, const glm::dvec3& p) {
   return {glm::dot(d, v.right()), glm::dot(d, v.up()), glm::dot(d, v.forward())};
 }
 
-// The spheres to draw, cells nearest first (ids ascending within a cell).
-// With culling off: every drawable sphere with a pixel centre in its box.
+// The spheres to draw, as entries of the grid (indices into g.ids, g.centre,
+// g.radius), cells nearest first. With culling off: every drawable sphere with
+// a pixel centre in its silhouette's box.
+// The per-sphere tests run on `threads` threads.
 std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, const View& view, bool culling,
-                                      VisibilityStats* stats);
+                                      VisibilityStats* stats, int threads = 1);
 
 }  // namespace zs
