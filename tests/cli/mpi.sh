@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `zsweep render --mpi` under `mpirun -np 2`: both schedules, one and two
-# threads per rank, the default scene and a one-tet mesh, each image
+# threads per rank, the default scene, a one-tet mesh and a sphere set, each image
 # bit-identical to a single-process render; rank 0 alone writes (every rank
 # runs in its own directory with a relative -o, and its stdout/stderr go to
 # files there); failures give one line naming the file and never hang.
@@ -43,7 +43,9 @@ tiles=()
 "$zsweep" render --help | grep -q -- '--tile-size' && tiles=(--tile-size 16)  # 130 tiles
 
 small="$src/tests/data/ok/no_final_newline.off"  # one tet, automatic camera: fills the image
-inputs=("default" "$small")
+# A sphere set: the sphere renderer through the same MPI path (RGBA and Z).
+spheres="$src/tests/data/spheres/small.pdb"
+inputs=("default" "$small" "$spheres")
 for input in "${inputs[@]}"; do
   in=(); [ "$input" = default ] || in=("$input")
   name=$(basename "$input")
