@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/json_out.h"
 #include "cli/scene_args.h"
 #include "mesh/topology.h"
 #include "reference/reference_renderer.h"
@@ -70,13 +71,7 @@ void reference_spheres(SceneInput& in, const std::string& out, const std::string
                         {"invalid", img.invalid},
                         {"pixels_hit", img.hits},
                         {"image", {{"width", rs.width}, {"height", rs.height}}}};
-    AtomicFile f(stats);
-    {
-      std::ofstream o(f.temp_path());
-      o << j.dump(2) << "\n";
-      if (!o) throw std::runtime_error(stats + ": cannot write stats");
-    }
-    f.commit();
+    write_json_file(stats, j);
   }
   std::printf("wrote %s: %ux%u, %zu spheres (%zu left out), %llu pixels hit, BVH %.1f ms, trace %.1f ms\n",
               out.c_str(), rs.width, rs.height, in.spheres.size(), img.invalid, (unsigned long long)img.hits,
@@ -112,13 +107,7 @@ void add_reference_command(CLI::App& app) {
                           {"entries", s.entries},        {"lost_walks", s.lost_walks}, {"flat_tets", s.flat_tets},
                           {"boundary_faces", s.boundary_faces}, {"unbinned_faces", s.unbinned_faces},
                           {"image", {{"width", img.width}, {"height", img.height}}}};
-      AtomicFile f(*stats);
-      {
-        std::ofstream o(f.temp_path());
-        o << j.dump(2) << "\n";
-        if (!o) throw std::runtime_error(*stats + ": cannot write stats");
-      }
-      f.commit();
+      write_json_file(*stats, j);
     }
     std::printf("wrote %s: %ux%u, %llu rays hit, %llu segments, %llu lost walks, %.1f ms\n", out->c_str(), img.width,
                 img.height, (unsigned long long)s.rays_hit, (unsigned long long)s.segments,

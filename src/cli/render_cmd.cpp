@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/json_out.h"
 #include "cli/render_mpi.h"
 #include "cli/scene_args.h"
 #include "image/tile_writer.h"
@@ -86,13 +87,7 @@ void write_stats(const std::string& path, const RenderStats& S, const Scene& sce
   };
   // --frames N: every frame's total; time_ms.total is the best of them.
   if (frame_ms.size() > 1) j["frame_ms"] = frame_ms;
-  AtomicFile out(path);
-  {
-    std::ofstream f(out.temp_path());
-    f << j.dump(2) << "\n";
-    if (!f) throw std::runtime_error(path + ": cannot write stats");
-  }
-  out.commit();
+  write_json_file(path, j);
 }
 
 // Input that renders, but not as the user likely meant: one warning line
@@ -196,13 +191,7 @@ void write_sphere_stats(const std::string& path, const SphereStats& S, const Sce
       {"memory_budget_bytes", S.memory_budget_bytes},
   };
   if (frame_ms.size() > 1) j["frame_ms"] = frame_ms;
-  AtomicFile out(path);
-  {
-    std::ofstream f(out.temp_path());
-    f << j.dump(2) << "\n";
-    if (!f) throw std::runtime_error(path + ": cannot write stats");
-  }
-  out.commit();
+  write_json_file(path, j);
 }
 
 void run_spheres(SceneInput& in, const std::string& out_path, const std::string& stats_path, int frames,

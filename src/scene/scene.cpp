@@ -326,11 +326,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
       rs.max_list_length = r["max_list_length"].get<uint32_t>();
     }
     if (r.contains("memory_budget_mb")) {
-      const double mb = num(c, r["memory_budget_mb"], "render.memory_budget_mb");
-      // Up to 2^44 MiB (2^64 bytes): beyond, the byte count is not representable
-      // (a fuzzing finding: the conversion was undefined behaviour).
-      if (!(mb > 0 && mb < 17592186044416.0)) c.fail("render.memory_budget_mb must be positive and below 2^44");
-      rs.memory_budget_bytes = uint64_t(mb * 1048576.0);
+      rs.memory_budget_bytes = uint64_t(memory_budget_mb(c, r["memory_budget_mb"]) * 1048576.0);
     }
   }
   return s;

@@ -48,7 +48,7 @@ TEST(Scene, ParsesEveryKey) {
 
 TEST(Scene, RejectsBadInputWithOneLine) {
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "camrea": {}})"),
-            "s.json: unknown key 'scene.camrea' (allowed: mesh, image, camera, transfer_function, render)");
+            "s.json: unknown key 'scene.camrea' (allowed: mesh, spheres, image, camera, transfer_function, shading, render)");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"scan": "zigzag"}})"),
             "s.json: render.scan must be \"bbox\", \"bconvert\" or \"span\"");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"precision": "half"}})"),
@@ -211,6 +211,69 @@ TEST(TransferFunction, TransparentOverMatchesMaxOpacity) {
         EXPECT_EQ(tf.transparent_over(lo, hi), tf.max_opacity(lo, hi) <= 0) << lo << " " << hi;
       }
   }
+}
+
+}  // namespace
+}  // namespace zs
+
+namespace zs {
+namespace {
+
+// A sphere scene: the renderer is picked by the top-level key, and the sphere
+// blocks' values arrive where the renderer reads them.
+TEST(Scene, SphereSceneParsesEveryKey) {
+  const Scene s = parse_scene(R"({
+    "spheres": {"path": "atoms.pdb", "radius_scale": 0.5, "color": "scalar"},
+    "image": {"width": 64, "height": 32, "background": [0, 0, 0, 1]},
+    "camera": {"projection": "perspective", "eye": [0, 0, 9], "target": [0, 0, 0], "fov_y": 25},
+    "shading": {"model": "flat", "light_direction": [1, 0, -1], "ambient": 0.1, "diffuse": 0.6,
+                "specular": 0.2, "shininess": 8},
+    "render": {"mode": "peel", "surfaces": "front", "tolerance": 4, "max_layers": 16, "grid": 5,
+               "culling": false, "memory_budget_mb": 512}})",
+                              "s.json", "/data");
+  ASSERT_EQ(s.kind, SceneKind::Spheres);
+  const SphereScene& sp = s.spheres;
+  EXPECT_EQ(sp.path, "/data/atoms.pdb");
+  EXPECT_EQ(sp.radius_scale, 0.5);
+  EXPECT_TRUE(sp.has_color_mode);
+  EXPECT_EQ(sp.color, SphereColorMode::Scalar);
+  EXPECT_EQ(sp.shading.model, ShadingModel::Flat);
+  EXPECT_EQ(sp.shading.light_direction, glm::dvec3(1, 0, -1));
+  EXPECT_EQ(sp.shading.shininess, 8);
+  EXPECT_EQ(sp.mode, SphereMode::Peel);
+  EXPECT_TRUE(sp.front_surfaces_only);
+  EXPECT_EQ(sp.tolerance, 4);
+  EXPECT_EQ(sp.max_layers, 16u);
+  EXPECT_EQ(sp.grid, 5u);
+  EXPECT_FALSE(sp.culling);
+  EXPECT_EQ(s.settings.memory_budget_bytes, uint64_t(512) << 20);
+  const SphereRenderSettings r = sphere_render_settings(s.settings, sp);
+  EXPECT_EQ(r.width, 64u);
+  EXPECT_EQ(r.camera.projection, Projection::Perspective);
+  EXPECT_EQ(r.background[3], 1.0);
+  EXPECT_EQ(r.grid, 5u);
+  EXPECT_FALSE(r.culling);
+}
+
+TEST(Scene, SphereSceneErrors) {
+  auto err = [](const std::string& json) {
+    try {
+      parse_scene(json, "s.json", "");
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(err(R"({"mesh": "m.off", "spheres": "a.sph"})").find("not both"), std::string::npos);
+  EXPECT_NE(err(R"({"image": {}})").find("missing 'mesh' (volume) or 'spheres'"), std::string::npos);
+  EXPECT_NE(err(R"({"spheres": {"path": "a.sph", "radius_scale": 0}})").find("radius_scale"), std::string::npos);
+  EXPECT_NE(err(R"({"spheres": "a.sph", "shading": {"model": "toon"}})").find("shading.model"), std::string::npos);
+  EXPECT_NE(err(R"({"spheres": "a.sph", "shading": {"ambient": 2}})").find("shading.ambient"), std::string::npos);
+  EXPECT_NE(err(R"({"spheres": "a.sph", "render": {"grid": 0}})").find("render.grid"), std::string::npos);
+  EXPECT_NE(err(R"({"spheres": "a.sph", "render": {"integrator": "exact"}})").find("unknown key 'render.integrator'"),
+            std::string::npos);
+  EXPECT_NE(err(R"({"mesh": "m.off", "render": {"mode": "opaque"}})").find("unknown key 'render.mode'"),
+            std::string::npos);
 }
 
 }  // namespace
