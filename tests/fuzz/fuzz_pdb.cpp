@@ -1,8 +1,8 @@
 // libFuzzer target: the PDB atom reader (parse_pdb). Errors it reports
 // (FileError, one line naming the input) are expected outcomes; any other
 // exception, crash, leak or sanitizer report is a finding, and so is an
-// accepted set that breaks the readers' contract (fuzz_sphere_check.h). There
-// is no sphere renderer yet to go past the parser into.
+// accepted set that breaks the readers' contract (fuzz_sphere_check.h). An
+// accepted set is then rendered small, culling on and off (fuzz_sphere_check.h).
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -13,7 +13,9 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
-    zs::fuzz::check_spheres(zs::parse_pdb(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.pdb"));
+    const zs::SphereSet set = zs::parse_pdb(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.pdb");
+    zs::fuzz::check_spheres(set);
+    zs::fuzz::render_spheres_small(set);
   } catch (const zs::FileError&) {
   }
   return 0;
