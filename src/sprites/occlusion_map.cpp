@@ -13,6 +13,23 @@ OcclusionMap::OcclusionMap(uint32_t width, uint32_t height, uint32_t max_side) :
   level_.emplace_back(size_t(tw_) * th_, INFINITY);
   lw_.push_back(tw_);
   lh_.push_back(th_);
+  bw_ = (tw_ + kSummary - 1) / kSummary;
+  bh_ = (th_ + kSummary - 1) / kSummary;
+  bmax_.assign(size_t(bw_) * bh_, INFINITY);
+  bdirty_.assign(size_t(bw_) * bh_, 0);
+}
+
+double OcclusionMap::block_max(uint32_t bx, uint32_t by) const {
+  const size_t b = size_t(by) * bw_ + bx;
+  if (bdirty_[b]) {
+    double v = -INFINITY;
+    const uint32_t x1 = std::min(tw_, (bx + 1) * kSummary), y1 = std::min(th_, (by + 1) * kSummary);
+    for (uint32_t y = by * kSummary; y < y1; ++y)
+      for (uint32_t x = bx * kSummary; x < x1; ++x) v = std::max(v, level_[0][size_t(y) * tw_ + x]);
+    bmax_[b] = v;
+    bdirty_[b] = 0;
+  }
+  return bmax_[b];
 }
 
 uint64_t OcclusionMap::bytes() const {
@@ -39,15 +56,17 @@ void OcclusionMap::write_disc(double X, double Y, double rho, double z, int row0
     const double hw2 = r2 - dy * dy;
     if (!(hw2 >= 0)) continue;
     const double hw = std::sqrt(hw2), xl = X - hw, xr = X + hw;
-    // Texels whose first pixel column ≥ xl and last ≤ xr.
-    const int tx0 = std::max(0, int(std::ceil(xl / s_)));
-    for (int tx = tx0; tx < int(tw_); ++tx) {
-      const double x0 = double(tx) * s_, x1 = double(std::min<uint32_t>((tx + 1) * s_, w_) - 1);
-      if (x0 < xl) continue;
-      if (x1 > xr) break;
-      double& d = m[size_t(ty) * tw_ + tx];
-      d = std::min(d, z);
-    }
+    // Texels whose first pixel column is ≥ xl and whose last is ≤ xr (the
+    // last texel of a row ends at the image's last column).
+    const double lo = std::ceil(xl / s_);
+    double hi = std::floor((xr + 1) / s_) - 1;
+    if (double(w_) - 1 <= xr) hi = double(tw_) - 1;
+    const int tx0 = int(std::max(lo, 0.0)), tx1 = int(std::min(hi, double(tw_) - 1));
+    if (tx0 > tx1) continue;
+    double* row = m.data() + size_t(ty) * tw_;
+    for (int tx = tx0; tx <= tx1; ++tx) row[tx] = std::min(row[tx], z);
+    for (int bx = tx0 / int(kSummary); bx <= tx1 / int(kSummary); ++bx)
+      bdirty_[size_t(ty / int(kSummary)) * bw_ + bx] = 1;
   }
 }
 
@@ -57,9 +76,17 @@ bool OcclusionMap::hidden(int i0, int i1, int j0, int j1, double z) const {
   if (i0 > i1 || j0 > j1) return true;  // no pixel centre: nothing to see
   const int tx0 = i0 / int(s_), tx1 = i1 / int(s_), ty0 = j0 / int(s_), ty1 = j1 / int(s_);
   const std::vector<double>& m = level_[0];
-  for (int ty = ty0; ty <= ty1; ++ty)
-    for (int tx = tx0; tx <= tx1; ++tx)
-      if (!(occlusion_margin(m[size_t(ty) * tw_ + tx]) < z)) return false;
+  const int K = int(kSummary);
+  for (int by = ty0 / K; by <= ty1 / K; ++by)
+    for (int bx = tx0 / K; bx <= tx1 / K; ++bx) {
+      // A summary block hidden as a whole settles all its texels.
+      if (occlusion_margin(block_max(uint32_t(bx), uint32_t(by))) < z) continue;
+      const int ya = std::max(ty0, by * K), yb = std::min(ty1, by * K + K - 1);
+      const int xa = std::max(tx0, bx * K), xb = std::min(tx1, bx * K + K - 1);
+      for (int ty = ya; ty <= yb; ++ty)
+        for (int tx = xa; tx <= xb; ++tx)
+          if (!(occlusion_margin(m[size_t(ty) * tw_ + tx]) < z)) return false;
+    }
   return true;
 }
 

@@ -36,6 +36,9 @@ class OcclusionMap {
   bool hidden_pyramid(int i0, int i1, int j0, int j1, double z) const;
 
   uint32_t block() const { return s_; }
+  // Rows of texels that share a summary block: bands drawn by different
+  // threads must start on a multiple of this.
+  static constexpr uint32_t kSummary = 16;
   uint32_t texels_x() const { return tw_; }
   uint32_t texels_y() const { return th_; }
   double texel(uint32_t tx, uint32_t ty) const { return level_[0][size_t(ty) * tw_ + tx]; }
@@ -45,6 +48,13 @@ class OcclusionMap {
   uint32_t w_, h_, s_, tw_, th_;
   std::vector<std::vector<double>> level_;  // level_[0]: the map; then max levels
   std::vector<uint32_t> lw_, lh_;
+  // While the map grows: the max over each kSummary² block of texels, kept
+  // lazily (a block written since is recomputed when a test needs it), so
+  // testing a large box reads blocks, not texels.
+  uint32_t bw_, bh_;
+  mutable std::vector<double> bmax_;
+  mutable std::vector<uint8_t> bdirty_;
+  double block_max(uint32_t bx, uint32_t by) const;
 };
 
 // A margin for depths compared across two computations of a surface (the

@@ -21,6 +21,40 @@ namespace zs {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The occlusion map's texel: s×s pixels (occlusion_map.h). Drawing the discs
+// costs their area in texels, and a texel only takes a disc that covers all
+// of it: small spheres on screen want one texel per pixel, large ones lose
+// little with coarser texels and cost far less to draw. So s is a quarter of
+// the on-screen radius that splits a sample of the discs' area in half (at
+// least 1), and the map is at most 1024 texels a side.
+uint32_t occlusion_block(const SphereGrid& g, const View& view, const std::vector<uint32_t>& cells) {
+  std::vector<double> rho;
+  uint64_t total = 0;
+  for (uint32_t k : cells) total += g.count(k);
+  const uint64_t step = std::max<uint64_t>(1, total / 1024);
+  uint64_t seen = 0;
+  for (uint32_t k : cells)
+    for (uint64_t e = g.offset[k]; e < g.offset[k + 1]; ++e, ++seen) {
+      if (seen % step) continue;
+      const glm::dvec3 c = to_camera(view, g.centre[e]);
+      if (!(c.z - g.radius[e] > 0)) continue;
+      rho.push_back(view.scale_x() * g.radius[e] / (view.perspective() ? c.z : 1.0));
+    }
+  if (rho.empty()) return 1;
+  // The radius below which half of the discs' area lies: the drawing cost
+  // is in the large discs.
+  std::sort(rho.begin(), rho.end());
+  double area = 0, half = 0;
+  for (double r : rho) area += r * r;
+  double r_half = rho.back();
+  for (double r : rho)
+    if ((half += r * r) >= area / 2) {
+      r_half = r;
+      break;
+    }
+  return uint32_t(std::clamp(std::floor(r_half / 4), 1.0, 64.0));
+}
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 struct Plane {
@@ -75,8 +109,8 @@ bool box_screen_range(const View& v, const glm::dvec3& lo, const glm::dvec3& hi,
 
 // Steps 1 and 2: view-volume culling, then occlusion culling cells nearest
 // first, drawing each surviving cell's discs into `map`.
-void cull_cells(const SphereGrid& g, const View& view, OcclusionMap& map, std::vector<uint32_t>* survivors,
-                VisibilityStats* st, int threads) {
+void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<OcclusionMap>* map_out,
+                std::vector<uint32_t>* survivors, VisibilityStats* st, int threads) {
   VisibilityStats& S = *st;
   struct Disc {
     double X, Y, rho, z;  // rho 0: not an occluder
@@ -121,6 +155,10 @@ void cull_cells(const SphereGrid& g, const View& view, OcclusionMap& map, std::v
   std::vector<size_t> order(cells.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cr[a].znear < cr[b].znear; });
+  const uint32_t side = std::max(view.width(), view.height()), block = occlusion_block(g, view, cells);
+  *map_out = std::make_unique<OcclusionMap>(view.width(), view.height(),
+                                            std::min<uint32_t>(1024, (side + block - 1) / block));
+  OcclusionMap& map = **map_out;
   for (size_t q : order) {
     const uint32_t k = cells[q];
     const CellRange& c = cr[q];
@@ -156,9 +194,11 @@ void cull_cells(const SphereGrid& g, const View& view, OcclusionMap& map, std::v
         }
         drawn += m;
       });
-      const int rows = int(map.texels_y()), bands = std::min(rows, 4 * threads);
+      // Bands of whole summary-block rows: no two tasks mark the same block.
+      const int K = int(OcclusionMap::kSummary), brows = (int(map.texels_y()) + K - 1) / K;
+      const int bands = std::min(brows, 4 * threads);
       tbb::parallel_for(0, bands, [&](int b) {
-        const int r0 = int(int64_t(rows) * b / bands), r1 = int(int64_t(rows) * (b + 1) / bands) - 1;
+        const int r0 = int(int64_t(brows) * b / bands) * K, r1 = int(int64_t(brows) * (b + 1) / bands) * K - 1;
         for (const Disc& d : discs)
           if (d.rho > 0) map.write_disc(d.X, d.Y, d.rho, d.z, r0, r1);
       });
@@ -198,8 +238,7 @@ std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, c
     for (uint32_t k = 0; k < g.cells(); ++k)
       if (g.count(k) > 0) survivors.push_back(k);
   } else {
-    map = std::make_unique<OcclusionMap>(view.width(), view.height());
-    cull_cells(g, view, *map, &survivors, &S, threads);
+    cull_cells(g, view, &map, &survivors, &S, threads);
   }
 
   // 3. The pyramid test per sphere of the surviving cells, cells in parallel;

@@ -209,6 +209,52 @@ TEST(SphereRenderer, CentreDiscMapIsNeverNearerThanTheExactDepth) {
   }
 }
 
+// Large spheres on screen: the occlusion map takes coarse texels (a block of
+// pixels each); culling must still change nothing.
+TEST(SphereRenderer, CullingIsLosslessWithCoarseOcclusionTexels) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1);
+  SphereSet s;
+  for (int i = 0; i < 400; ++i) {
+    s.centres.push_back({4 * u(rng), 4 * u(rng), 4 * u(rng)});
+    s.radii.push_back(0.6 + 0.3 * u(rng));
+  }
+  for (Projection p : {Projection::Orthographic, Projection::Perspective}) {
+    SphereRenderSettings on = settings(p, 160, 120), off = on;
+    on.camera.eye = {1, 1.5, 9};
+    on.camera.height = 5;
+    off = on;
+    off.culling = false;
+    const Rendered a = render(s, on), b = render(s, off);
+    EXPECT_EQ(a.rgba.rgba, b.rgba.rgba);
+    EXPECT_EQ(0, std::memcmp(a.z.data(), b.z.data(), a.z.size() * 4));
+    EXPECT_GT(a.stats.vis.spheres_occluded_cells + a.stats.vis.spheres_pyramid_culled, 50u);
+  }
+}
+
+// A coarse texel takes a disc only where the disc covers every pixel centre of
+// its block (brute force over the block's centres).
+TEST(SphereRenderer, CoarseOcclusionTexelsNeedFullCover) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const uint32_t w = 37 + uint32_t(40 * u(rng)), h = 23 + uint32_t(40 * u(rng));
+    OcclusionMap m(w, h, 8);  // blocks of several pixels
+    const double X = w * u(rng), Y = h * u(rng), rho = 2 + 15 * u(rng);
+    m.write_disc(X, Y, rho, 1.0);
+    const uint32_t s = m.block();
+    ASSERT_GT(s, 1u);
+    for (uint32_t ty = 0; ty < m.texels_y(); ++ty)
+      for (uint32_t tx = 0; tx < m.texels_x(); ++tx) {
+        bool all_in = true;
+        for (uint32_t y = ty * s; y < std::min((ty + 1) * s, h); ++y)
+          for (uint32_t x = tx * s; x < std::min((tx + 1) * s, w); ++x)
+            all_in = all_in && (x - X) * (x - X) + (y - Y) * (y - Y) <= rho * rho;
+        if (!all_in) EXPECT_TRUE(std::isinf(m.texel(tx, ty))) << trial << ": " << tx << "," << ty;
+      }
+  }
+}
+
 TEST(SphereRenderer, PyramidTestUsesOneLevelOfAtMostTwoByTwo) {
   OcclusionMap m(64, 64);
   // Everything near (depth 1) except one texel at the far end (+inf).
