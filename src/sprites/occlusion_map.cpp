@@ -44,6 +44,20 @@ void OcclusionMap::write_disc(double X, double Y, double rho, double z, int row0
   const double r = rho * (1 - 1e-6);
   if (!(r > 0) || !std::isfinite(X) || !std::isfinite(Y)) return;
   const double r2 = r * r;
+  if (r < 0.5) {
+    // Most discs of a large set: at most the nearest pixel centre is inside,
+    // and only a one-pixel texel can be covered (skipped when texels are
+    // larger: conservative).
+    if (s_ != 1) return;
+    const double px = std::round(X), py = std::round(Y);
+    if (!(px >= 0 && py >= 0 && px < double(tw_) && py < double(th_))) return;
+    if (int(py) < row0 || int(py) > row1) return;
+    if ((px - X) * (px - X) + (py - Y) * (py - Y) > r2) return;
+    double& d = level_[0][size_t(py) * tw_ + size_t(px)];
+    d = std::min(d, z);
+    bdirty_[size_t(int(py) / int(kSummary)) * bw_ + size_t(px) / kSummary] = 1;
+    return;
+  }
   const double ylo = std::floor((Y - r) / s_), yhi = std::ceil((Y + r) / s_);
   if (!(yhi >= row0 && ylo <= row1)) return;
   const int ty0 = std::max({0, row0, int(std::max(ylo, -1.0))});

@@ -196,7 +196,7 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
       });
       // Bands of whole summary-block rows: no two tasks mark the same block.
       const int K = int(OcclusionMap::kSummary), brows = (int(map.texels_y()) + K - 1) / K;
-      const int bands = std::min(brows, 4 * threads);
+      const int bands = std::min(brows, threads);  // each band reads every disc: no more bands than threads
       tbb::parallel_for(0, bands, [&](int b) {
         const int r0 = int(int64_t(brows) * b / bands) * K, r1 = int(int64_t(brows) * (b + 1) / bands) * K - 1;
         for (const Disc& d : discs)
@@ -206,6 +206,34 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
     S.occluders += drawn;
   }
   S.ms_occlusion = ms_since(t0);
+}
+
+// Pixel-centre box (clamped to the image; false when empty) that holds the
+// silhouette of a sphere wholly in front of the eye (c.z − r > 0), cheaper
+// than the exact conic: orthographic, the circle's box; perspective, for a
+// surface point c + r·n, |x/z − cx/cz| = r·|nx·cz − nz·cx| / (cz·(cz + r·nz))
+// ≤ r·√(cx² + cz²) / (cz·(cz − r)) by Cauchy–Schwarz (and the same in y).
+bool silhouette_box(const View& v, const glm::dvec3& c, double r, int* i0, int* i1, int* j0, int* j1) {
+  double a0, a1, b0, b1;
+  if (v.perspective()) {
+    const double inv = 1.0 / c.z, k = r / (c.z * (c.z - r));
+    const double ha = k * std::sqrt(c.x * c.x + c.z * c.z), hb = k * std::sqrt(c.y * c.y + c.z * c.z);
+    a0 = c.x * inv - ha, a1 = c.x * inv + ha, b0 = c.y * inv - hb, b1 = c.y * inv + hb;
+  } else {
+    a0 = c.x - r, a1 = c.x + r, b0 = c.y - r, b1 = c.y + r;
+  }
+  // Widened for rounding, as the exact range is.
+  const double X0 = v.scale_x() * a0 + v.offset_x(), X1 = v.scale_x() * a1 + v.offset_x();
+  const double Y0 = v.offset_y() - v.scale_y() * b1, Y1 = v.offset_y() - v.scale_y() * b0;
+  const double eps = 1e-6;
+  const double W = v.width(), H = v.height();
+  const double x0 = std::ceil(std::clamp(X0 - eps - 1e-9 * std::fabs(X0), -1.0, W));
+  const double x1 = std::floor(std::clamp(X1 + eps + 1e-9 * std::fabs(X1), -1.0, W));
+  const double y0 = std::ceil(std::clamp(Y0 - eps - 1e-9 * std::fabs(Y0), -1.0, H));
+  const double y1 = std::floor(std::clamp(Y1 + eps + 1e-9 * std::fabs(Y1), -1.0, H));
+  *i0 = int(std::max(x0, 0.0)), *i1 = int(std::min(x1, W - 1));
+  *j0 = int(std::max(y0, 0.0)), *j1 = int(std::min(y1, H - 1));
+  return *i0 <= *i1 && *j0 <= *j1;
 }
 
 }  // namespace
@@ -256,15 +284,26 @@ std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, c
       const uint32_t k = survivors[q];
       std::array<uint64_t, 2>& n = counts.local();  // offscreen, pyramid-culled
       for (uint64_t e = g.offset[k]; e < g.offset[k + 1]; ++e) {
-        glm::dvec3 c;
         int i0, i1, j0, j1;
+        if (map) {
+          // The pyramid first, on a cheap box that holds the silhouette:
+          // most spheres of a large set end here.
+          const glm::dvec3 c = to_camera(view, g.centre[e]);
+          const double znear = c.z - g.radius[e];
+          if (znear > 0) {
+            if (!silhouette_box(view, c, g.radius[e], &i0, &i1, &j0, &j1)) {
+              ++n[0];
+              continue;
+            }
+            if (map->hidden_pyramid(i0, i1, j0, j1, znear)) {
+              ++n[1];
+              continue;
+            }
+          }
+        }
+        glm::dvec3 c;
         if (!on_screen(e, &c, &i0, &i1, &j0, &j1)) {
           ++n[0];
-          continue;
-        }
-        const double znear = c.z - g.radius[e];
-        if (map && znear > 0 && map->hidden_pyramid(i0, i1, j0, j1, znear)) {
-          ++n[1];
           continue;
         }
         kept[q].push_back(uint32_t(e));
