@@ -175,32 +175,43 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
     // split.
     const uint64_t e0 = g.offset[k], n = g.count(k);
     discs.resize(n);
+    auto set_up = [&](uint64_t q0, uint64_t q1) {
+      uint64_t m = 0;
+      for (uint64_t q = q0; q < q1; ++q) {
+        const glm::dvec3 cc = to_camera(view, g.centre[e0 + q]);
+        const double R = g.radius[e0 + q];
+        Disc& d = discs[q];
+        if (!(cc.z - R > 0)) {
+          d.rho = 0;
+          continue;
+        }
+        const double inv = view.perspective() ? 1.0 / cc.z : 1.0;
+        d = {view.scale_x() * cc.x * inv + view.offset_x(), view.offset_y() - view.scale_y() * cc.y * inv,
+             view.scale_x() * R * inv, cc.z};
+        ++m;
+      }
+      return m;
+    };
+    auto draw = [&](int r0, int r1) {
+      for (const Disc& d : discs)
+        if (d.rho > 0) map.write_disc(d.X, d.Y, d.rho, d.z, r0, r1);
+    };
+    // Threads pay off only on cells large enough to cover their start.
+    if (threads == 1 || n < 8192) {
+      S.occluders += set_up(0, n);
+      draw(0, int(map.texels_y()) - 1);
+      continue;
+    }
     std::atomic<uint64_t> drawn{0};
     arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 1024), [&](const tbb::blocked_range<uint64_t>& br) {
-        uint64_t m = 0;
-        for (uint64_t q = br.begin(); q < br.end(); ++q) {
-          const glm::dvec3 cc = to_camera(view, g.centre[e0 + q]);
-          const double R = g.radius[e0 + q];
-          Disc& d = discs[q];
-          if (!(cc.z - R > 0)) {
-            d.rho = 0;
-            continue;
-          }
-          const double inv = view.perspective() ? 1.0 / cc.z : 1.0;
-          d = {view.scale_x() * cc.x * inv + view.offset_x(), view.offset_y() - view.scale_y() * cc.y * inv,
-               view.scale_x() * R * inv, cc.z};
-          ++m;
-        }
-        drawn += m;
+      tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 2048), [&](const tbb::blocked_range<uint64_t>& br) {
+        drawn += set_up(br.begin(), br.end());
       });
       // Bands of whole summary-block rows: no two tasks mark the same block.
       const int K = int(OcclusionMap::kSummary), brows = (int(map.texels_y()) + K - 1) / K;
       const int bands = std::min(brows, threads);  // each band reads every disc: no more bands than threads
       tbb::parallel_for(0, bands, [&](int b) {
-        const int r0 = int(int64_t(brows) * b / bands) * K, r1 = int(int64_t(brows) * (b + 1) / bands) * K - 1;
-        for (const Disc& d : discs)
-          if (d.rho > 0) map.write_disc(d.X, d.Y, d.rho, d.z, r0, r1);
+        draw(int(int64_t(brows) * b / bands) * K, int(int64_t(brows) * (b + 1) / bands) * K - 1);
       });
     });
     S.occluders += drawn;
