@@ -176,6 +176,7 @@ void write_sphere_stats(const std::string& path, const SphereStats& S, const Sce
         {"occluders", V.occluders},
         {"spheres_visible", V.spheres_visible}}},
       {"spheres_scanned", S.spheres_scanned},
+      {"spheres_block_rejected", S.spheres_block_rejected},
       {"pixel_tests", S.pixel_tests},
       {"fragments", S.fragments},
       {"fragments_early_rejected", S.early_rejected},

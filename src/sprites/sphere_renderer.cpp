@@ -10,6 +10,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
 #include "raster/depth_buffer.h"
@@ -29,8 +30,16 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 // A thread's scratch, reused from tile to tile.
+// Pixels per side of the blocks whose farthest depth a tile keeps.
+constexpr int kBlock = 8;
+
 struct alignas(128) TileState {
   DepthBuffer depth;
+  // Per kBlock² block of the tile: the farthest depth in it, kept lazily
+  // (recomputed when a test needs a block written since). A sphere whose
+  // nearest depth lies behind every block under its box is skipped whole.
+  std::vector<double> bmax;
+  std::vector<uint8_t> bdirty;
   FaceSpans spans;
   std::vector<float> out;  // RGBA + Z per pixel
   SphereStats stats;       // this thread's per-tile counts
@@ -95,6 +104,7 @@ struct SphereRenderer::Impl {
     const auto t_vis = Clock::now();
     std::vector<uint32_t> visible = visible_spheres(s, g, view, rs.culling, &S.vis, threads);
     S.ms_visibility = ms_since(t_vis);
+    sort_front_to_back(visible, threads);
     shared += visible.size() * 4 + S.vis.map_bytes;
 
     // Bins, in the visible order: each sphere's tile range (in parallel),
@@ -144,12 +154,54 @@ struct SphereRenderer::Impl {
     S.ms_setup = ms_since(t_start);
   }
 
+  // Nearest first (by each sphere's nearest depth; entry order on ties, so the
+  // order, like the image, is the same every run): a tile's first spheres
+  // then hide most of the rest, which its block test skips whole. The order
+  // changes no pixel (the depth test is order-independent), only the work.
+  void sort_front_to_back(std::vector<uint32_t>& visible, int threads) {
+    std::vector<std::pair<double, uint32_t>> key(visible.size());
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      tbb::parallel_for(size_t(0), visible.size(), [&](size_t q) {
+        const uint32_t e = visible[q];
+        key[q] = {to_camera(view, g.centre[e]).z - g.radius[e], e};
+      });
+      tbb::parallel_sort(key.begin(), key.end());
+    });
+    for (size_t q = 0; q < key.size(); ++q) visible[q] = key[q].second;
+  }
+
+  // Whether every block of the tile under pixel box [i0, i1] x [j0, j1] (tile
+  // coordinates) is nearer than z everywhere.
+  static bool blocks_nearer(TileState& ts, uint32_t w, uint32_t h, int i0, int i1, int j0, int j1, double z) {
+    const uint32_t bw = (w + kBlock - 1) / kBlock;
+    for (int by = j0 / kBlock; by <= j1 / kBlock; ++by)
+      for (int bx = i0 / kBlock; bx <= i1 / kBlock; ++bx) {
+        const size_t b = size_t(by) * bw + size_t(bx);
+        if (ts.bdirty[b]) {
+          double m = -INFINITY;
+          const uint32_t y1 = std::min<uint32_t>(h, uint32_t(by + 1) * kBlock);
+          const uint32_t x1 = std::min<uint32_t>(w, uint32_t(bx + 1) * kBlock);
+          for (uint32_t y = uint32_t(by) * kBlock; y < y1; ++y)
+            for (uint32_t x = uint32_t(bx) * kBlock; x < x1; ++x) m = std::max(m, ts.depth.depth(size_t(y) * w + x));
+          ts.bmax[b] = m;
+          ts.bdirty[b] = 0;
+        }
+        if (!(ts.bmax[b] < z)) return false;
+      }
+    return true;
+  }
+
   // One tile: nearest (depth, id) per pixel, then shade each pixel once.
   const float* render_tile(uint32_t t, const TileRect& r) {
     TileState& ts = states.local();
     SphereStats& S = ts.stats;
     const uint32_t w = r.width(), h = r.height();
     ts.depth.reset(w, h, 1);
+    const uint32_t nb = ((w + kBlock - 1) / kBlock) * ((h + kBlock - 1) / kBlock);
+    ts.bmax.assign(nb, INFINITY);
+    ts.bdirty.assign(nb, 0);
+    const uint32_t bw = (w + kBlock - 1) / kBlock;
     const Viewport vp{int(r.x0), int(r.y0), int(r.x1), int(r.y1)};
     for (uint64_t e = bin_offset[t]; e < bin_offset[t + 1]; ++e) {
       const uint32_t entry = bin_ids[e], id = g.ids[entry];
@@ -159,11 +211,19 @@ struct SphereRenderer::Impl {
       // nearest depth, for rounding): a pixel already nearer cannot change.
       const double zmin = c.z - g.radius[entry];
       const double z_reject = zmin - 1e-9 * std::abs(zmin);
+      int i0, i1, j0, j1;
+      if (!sphere_pixel_range(su, vp, &i0, &i1, &j0, &j1)) continue;
+      i0 -= vp.x0, i1 -= vp.x0, j0 -= vp.y0, j1 -= vp.y0;  // tile coordinates
+      if (blocks_nearer(ts, w, h, i0, i1, j0, j1, z_reject)) {
+        ++S.spheres_block_rejected;
+        continue;
+      }
       ts.spans.clear();
       ScanCounters sc;
       scan_sphere(su, vp, ts.spans, sc);
       ++S.spheres_scanned;
       S.pixel_tests += sc.pixel_tests;
+      const uint64_t writes_before = S.depth_writes;
       for (const RowSpan& row : ts.spans.rows) {
         const size_t base = size_t(row.y - vp.y0) * w - size_t(vp.x0);
         for (int32_t i = row.x0; i <= row.x1; ++i) {
@@ -178,6 +238,9 @@ struct SphereRenderer::Impl {
           if (ts.depth.test_write(p, hit.t, id)) ++S.depth_writes;
         }
       }
+      if (S.depth_writes != writes_before)  // its blocks' farthest depths may have moved
+        for (int by = j0 / kBlock; by <= j1 / kBlock; ++by)
+          for (int bx = i0 / kBlock; bx <= i1 / kBlock; ++bx) ts.bdirty[size_t(by) * bw + size_t(bx)] = 1;
     }
     resolve(ts, r);
     return ts.out.data();

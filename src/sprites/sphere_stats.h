@@ -17,6 +17,7 @@ struct SphereStats {
   // exact depth was computed, fragments rejected by the early depth test
   // (the sphere's nearest depth behind the buffer), depth writes.
   uint64_t spheres_scanned = 0, pixel_tests = 0, fragments = 0, early_rejected = 0, depth_writes = 0;
+  uint64_t spheres_block_rejected = 0;  // skipped whole: behind every block of the tile under their box
   uint64_t rendered_pixels = 0;
   uint64_t peak_rss_bytes = 0, memory_budget_bytes = 0, shared_bytes = 0;
 };
@@ -24,6 +25,7 @@ struct SphereStats {
 // The per-tile parts of `tile` added to `into`.
 inline void add_tile_stats(SphereStats& into, const SphereStats& tile) {
   into.spheres_scanned += tile.spheres_scanned;
+  into.spheres_block_rejected += tile.spheres_block_rejected;
   into.pixel_tests += tile.pixel_tests;
   into.fragments += tile.fragments;
   into.early_rejected += tile.early_rejected;
