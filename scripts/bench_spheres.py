@@ -353,7 +353,7 @@ def plots(rows, summary, outdir, prefix):
         def series(renderer, threads):
             pts = [(r["frame"], r["ms"]) for r in rows
                    if r["set"] == name and r["renderer"] == renderer and r["threads"] == threads
-                   and isinstance(r.get("ms"), float)]
+                   and r["frame"] != "auto" and isinstance(r.get("ms"), float)]
             return [p[0] for p in pts], [p[1] for p in pts]
         for renderer, threads, label, style in [("zsweep-basic", 1, "basic (--no-culling), 1 thread", "o-"),
                                                 ("zsweep-optimized", 1, "optimized (culling), 1 thread", "s-"),
@@ -409,13 +409,13 @@ def parser():
     ap.add_argument("--counts", default=None,
                     help="spheres per set, comma-separated in --sets order (default: full sizes; --quick: ~20 K)")
     ap.add_argument("--repeat", type=int, default=None,
-                    help="whole frames per measurement, best counts (default 2; --quick 1)")
+                    help="whole frames per measurement, best counts (default 1)")
     ap.add_argument("--threads", default=None,
                     help="thread counts for ours (default 1,2; --quick 1); 1 is always run (basic and optimized), "
                          "the others optimized only")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench-out", "spheres"))
     ap.add_argument("--vtk", action="store_true", help="time VTK's vtkOpenGLSphereMapper (needs an X display)")
-    ap.add_argument("--vtk-timeout", type=float, default=900, help="s for VTK's load + first frame per set")
+    ap.add_argument("--vtk-timeout", type=float, default=600, help="s for VTK's load + first frame per set")
     ap.add_argument("--vtk-frame-timeout", type=float, default=300, help="s per later VTK frame")
     ap.add_argument("--vtk-budget", type=float, default=420,
                     help="s of VTK frames per set (load and warm-up included); later frames are skipped")
@@ -424,6 +424,7 @@ def parser():
     ap.add_argument("--quick", action="store_true", help="small counts, 256², 3 frames, 1 repeat")
     ap.add_argument("--doc", action="store_true",
                     help="write the tables into docs/spheres-bench.md and the plots to docs/bench/spheres-*.png")
+    ap.add_argument("--replot", metavar="DIR", help="redraw the plots from DIR's CSVs (with --doc: into docs/bench)")
     ap.add_argument("--vtk-worker", help=argparse.SUPPRESS)
     return ap
 
@@ -443,9 +444,11 @@ def main():
     a = ap.parse_args()
     if a.vtk_worker:
         return vtk_worker(a.vtk_worker, a.size, a.repeat)
+    if a.replot:
+        return replot(a.replot, a.doc)
     size = a.size or (256 if a.quick else 1024)
     nframes = a.frames or (3 if a.quick else 12)
-    repeat = a.repeat or (1 if a.quick else 2)
+    repeat = a.repeat or 1
     sets = a.sets.split(",")
     for s in sets:
         if s not in FULL:
@@ -557,13 +560,19 @@ def main():
                   f"RMSE {fmt(emb.get('rmse'), 4)}", flush=True)
         rows += set_rows
         summary.append(summarize(name, count, size, set_rows, threads, emb, a.vtk))
-    cols = []
-    for r in rows:
-        for k in r:
-            if k not in cols:
-                cols.append(k)
-    write_csv(os.path.join(a.out, "spheres-frames.csv"), [{k: r.get(k, "") for k in cols} for r in rows])
-    write_csv(os.path.join(a.out, "spheres-summary.csv"), summary)
+        # After every set: a run cut short keeps the sets it finished.
+        cols = []
+        for r in rows:
+            for k in r:
+                if k not in cols:
+                    cols.append(k)
+        write_csv(os.path.join(a.out, "spheres-frames.csv"), [{k: r.get(k, "") for k in cols} for r in rows])
+        scols = []
+        for r in summary:
+            for k in r:
+                if k not in scols:
+                    scols.append(k)
+        write_csv(os.path.join(a.out, "spheres-summary.csv"), [{k: r.get(k, "") for k in scols} for r in summary])
     files = plots(rows, summary, a.out, "spheres-")
     wall = time.perf_counter() - started
     lines = doc_lines(summary, a, size, nframes, repeat, threads, wall)
@@ -582,6 +591,32 @@ def main():
                       "## Results")
     bad = [r for r in rows if r.get("same_as_basic") == "NO"]
     return 1 if bad else 0
+
+
+def replot(d, doc):
+    import csv
+
+    def num(v):
+        try:
+            x = float(v)
+        except ValueError:
+            return v
+        return int(x) if x.is_integer() and "." not in v and "e" not in v else x
+
+    def load(f):
+        return [{k: num(v) for k, v in r.items()} for r in csv.DictReader(open(os.path.join(d, f)))]
+    rows = load("spheres-frames.csv")
+    for r in rows:  # ms is a float in the rows the run builds
+        if isinstance(r.get("ms"), int):
+            r["ms"] = float(r["ms"])
+        if isinstance(r.get("frame"), float):
+            r["frame"] = int(r["frame"])
+    files = plots(rows, load("spheres-summary.csv"), d, "spheres-")
+    if doc:
+        for f in files:
+            shutil.copy(f, os.path.join(ROOT, "docs", "bench", os.path.basename(f)))
+    print("wrote", ", ".join(files))
+    return 0
 
 
 def summarize(name, count, size, rows, threads, emb, with_vtk):
