@@ -405,7 +405,7 @@ def parser():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sets", default="c1,c2,c3,c4")
     ap.add_argument("--size", type=int, default=None, help="image width and height (default 1024; --quick 256)")
-    ap.add_argument("--frames", type=int, default=None, help="orbit frames (default 12; --quick 3)")
+    ap.add_argument("--frames", type=int, default=None, help="orbit frames (default 4; --quick 3)")
     ap.add_argument("--counts", default=None,
                     help="spheres per set, comma-separated in --sets order (default: full sizes; --quick: ~20 K)")
     ap.add_argument("--repeat", type=int, default=None,
@@ -447,7 +447,7 @@ def main():
     if a.replot:
         return replot(a.replot, a.doc)
     size = a.size or (256 if a.quick else 1024)
-    nframes = a.frames or (3 if a.quick else 12)
+    nframes = a.frames or (3 if a.quick else 4)
     repeat = a.repeat or 1
     sets = a.sets.split(",")
     for s in sets:
