@@ -97,12 +97,13 @@ bool box_screen_range(const View& v, const glm::dvec3& lo, const glm::dvec3& hi,
       a /= c.z, b /= c.z;
     }
     const double X = v.scale_x() * a + v.offset_x(), Y = v.offset_y() - v.scale_y() * b;
+    if (!std::isfinite(X) || !std::isfinite(Y)) return false;  // (a fuzzing finding: NaN corners)
     xmin = std::min(xmin, X), xmax = std::max(xmax, X), ymin = std::min(ymin, Y), ymax = std::max(ymax, Y);
   }
-  if (!(xmax - xmin < 4e9 && ymax - ymin < 4e9)) return false;
-  // Widened by a pixel for rounding; still conservative.
-  *i0 = int(std::floor(std::max(xmin, -2.0))) - 1, *i1 = int(std::ceil(std::min(xmax, 2e9))) + 1;
-  *j0 = int(std::floor(std::max(ymin, -2.0))) - 1, *j1 = int(std::ceil(std::min(ymax, 2e9))) + 1;
+  // Widened by a pixel for rounding; still conservative. Clamped so the
+  // conversions stay in int's range.
+  *i0 = int(std::floor(std::clamp(xmin, -2.0, 2e9))) - 1, *i1 = int(std::ceil(std::clamp(xmax, -2.0, 2e9))) + 1;
+  *j0 = int(std::floor(std::clamp(ymin, -2.0, 2e9))) - 1, *j1 = int(std::ceil(std::clamp(ymax, -2.0, 2e9))) + 1;
   *znear = zmin;
   return true;
 }
@@ -224,7 +225,9 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
 // than the exact conic: orthographic, the circle's box; perspective, for a
 // surface point c + r·n, |x/z − cx/cz| = r·|nx·cz − nz·cx| / (cz·(cz + r·nz))
 // ≤ r·√(cx² + cz²) / (cz·(cz − r)) by Cauchy–Schwarz (and the same in y).
-bool silhouette_box(const View& v, const glm::dvec3& c, double r, int* i0, int* i1, int* j0, int* j1) {
+// Returns 1 for a box, 0 when it holds no pixel centre of the image, and -1
+// when the bound is not finite (no box: the caller takes the exact path).
+int silhouette_box(const View& v, const glm::dvec3& c, double r, int* i0, int* i1, int* j0, int* j1) {
   double a0, a1, b0, b1;
   if (v.perspective()) {
     const double inv = 1.0 / c.z, k = r / (c.z * (c.z - r));
@@ -236,6 +239,7 @@ bool silhouette_box(const View& v, const glm::dvec3& c, double r, int* i0, int* 
   // Widened for rounding, as the exact range is.
   const double X0 = v.scale_x() * a0 + v.offset_x(), X1 = v.scale_x() * a1 + v.offset_x();
   const double Y0 = v.offset_y() - v.scale_y() * b1, Y1 = v.offset_y() - v.scale_y() * b0;
+  if (!(std::isfinite(X0) && std::isfinite(X1) && std::isfinite(Y0) && std::isfinite(Y1))) return -1;
   const double eps = 1e-6;
   const double W = v.width(), H = v.height();
   const double x0 = std::ceil(std::clamp(X0 - eps - 1e-9 * std::fabs(X0), -1.0, W));
@@ -244,7 +248,7 @@ bool silhouette_box(const View& v, const glm::dvec3& c, double r, int* i0, int* 
   const double y1 = std::floor(std::clamp(Y1 + eps + 1e-9 * std::fabs(Y1), -1.0, H));
   *i0 = int(std::max(x0, 0.0)), *i1 = int(std::min(x1, W - 1));
   *j0 = int(std::max(y0, 0.0)), *j1 = int(std::min(y1, H - 1));
-  return *i0 <= *i1 && *j0 <= *j1;
+  return *i0 <= *i1 && *j0 <= *j1 ? 1 : 0;
 }
 
 }  // namespace
@@ -301,8 +305,9 @@ std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, c
           // most spheres of a large set end here.
           const glm::dvec3 c = to_camera(view, g.centre[e]);
           const double znear = c.z - g.radius[e];
-          if (znear > 0) {
-            if (!silhouette_box(view, c, g.radius[e], &i0, &i1, &j0, &j1)) {
+          const int box = znear > 0 ? silhouette_box(view, c, g.radius[e], &i0, &i1, &j0, &j1) : -1;
+          if (box >= 0) {
+            if (box == 0) {
               ++n[0];
               continue;
             }
