@@ -26,6 +26,9 @@ void check_sorted(const std::vector<P>& pts, const char* what) {
 // Linear interpolation of field F of a sorted point list, clamped at the ends.
 template <class P, class F>
 double lerp_points(const std::vector<P>& pts, double s, F field) {
+  // Only a default-constructed function has no points; using one is a bug in
+  // the caller (a fuzzing finding: it was undefined behaviour).
+  if (pts.empty()) throw std::logic_error("transfer function used before it was given points");
   if (s <= pts.front().s) return field(pts.front());
   if (s >= pts.back().s) return field(pts.back());
   auto it = std::upper_bound(pts.begin(), pts.end(), s, [](double v, const P& p) { return v < p.s; });

@@ -11,6 +11,7 @@
 
 #include "fuzz_render.h"
 #include "mesh/default_mesh.h"
+#include "scene/scene_defaults.h"
 #include "spheres/sphere_colors.h"
 #include "sprites/sphere_renderer.h"
 
@@ -44,7 +45,11 @@ void render_spheres(const zs::Scene& scene) {
     void tile(const TileRect&, const float*) override {}
   } sink;
   try {
-    const std::vector<glm::vec4> colors = sphere_colors(set, SphereColorMode::Scalar, scene.settings.tf);
+    // As the CLI does (scene_input): no transfer_function means the default
+    // ramp over the set's scalars.
+    const TransferFunction tf =
+        scene.has_transfer_function ? scene.settings.tf : default_transfer_function(set.scalars, 1.0);
+    const std::vector<glm::vec4> colors = sphere_colors(set, SphereColorMode::Scalar, tf);
     const SphereGrid g = build_sphere_grid(set, rs.grid);
     SphereRenderer r(set, colors, g, rs);
     r.render_tiles(sink, nullptr);
