@@ -164,7 +164,7 @@ void write_sphere_stats(const std::string& path, const SphereStats& S, const Sce
       {"spheres", {{"total", S.spheres}, {"invalid", S.invalid}, {"skipped_by_reader", in.spheres.invalid}}},
       {"culling",
        {{"enabled", in.scene.spheres.culling},
-        {"grid", in.scene.spheres.grid},
+        {"grid", std::lround(std::cbrt(double(V.cells)))},  // as built ("auto" resolved)
         {"cells", V.cells},
         {"cells_empty", V.cells_empty},
         {"cells_view_culled", V.cells_view_culled},

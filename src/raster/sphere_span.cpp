@@ -73,7 +73,8 @@ Interval quad_set(double al, double be, double ga, double la, double mu) {
 // positive depth, as a guess. Orthographic: the visible disk. Perspective:
 // D = (c·d)² − k|d|² >= 0, and with the eye outside (k > 0) also c·d > 0
 // (both roots share the sign of c·d); eye inside (k < 0): the whole row.
-Interval row_interval(const SphereSetup& s, double b) {
+// `al` is cx² − k (row_al), the same for every row.
+Interval row_interval(const SphereSetup& s, double b, double al) {
   if (!s.cam.perspective) {
     const double db = b - s.cy;
     const double w2 = s.rho2 - db * db;
@@ -88,9 +89,11 @@ Interval row_interval(const SphereSetup& s, double b) {
   if (s.k < 0) return {-kInf, kInf};  // eye inside: every ray hits
   const double e = s.cy * b + s.cz;   // c·d = cx·a + e
   if (s.k == 0) return quad_set(0, 0, 1, s.cx, e);
-  const double al = diff_sq(s.r, std::hypot(s.cy, s.cz));  // cx² − k
   return quad_set(al, s.cx * e, e * e - s.k * (b * b + 1), s.cx, e);
 }
+
+// cx² − k = R² − (cy² + cz²), without cancelling the squares.
+double row_al(const SphereSetup& s) { return diff_sq(s.r, std::hypot(s.cy, s.cz)); }
 
 // The extent along one camera-plane axis (u: cu; the other: cv) of the
 // perspective hit set with the eye outside: line v = const of the other axis
@@ -163,6 +166,7 @@ void scan_sphere(const SphereSetup& s, const Viewport& vp, FaceSpans& out, ScanC
   if (!sphere_pixel_range(s, vp, &i0, &i1, &j0, &j1)) return;
   const int x0 = vp.x0, xl = vp.x1 - 1;  // stepping may leave the guessed box, never the viewport
   uint64_t tests = 0, misses = 0, hits = 0;
+  const double al = s.cam.perspective && s.k > 0 ? row_al(s) : 0.0;
   for (int j = j0; j <= j1; ++j) {
     const double Y = j;
     auto test = [&](int i) {
@@ -172,7 +176,7 @@ void scan_sphere(const SphereSetup& s, const Viewport& vp, FaceSpans& out, ScanC
       misses += !in;
       return in;
     };
-    const Interval row = row_interval(s, (s.cam.oy - Y) * s.isy);
+    const Interval row = row_interval(s, (s.cam.oy - Y) * s.isy, al);
     int lo = 1, hi = 0;
     bool have = !row.empty() && pixel_interval(row.lo, row.hi, s.cam.sx, s.cam.ox, false, x0, vp.x1, &lo, &hi);
     if (have) {

@@ -185,7 +185,11 @@ void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
       *out = r[k].get<uint32_t>();
     };
     count("max_layers", 0, 1000000, &sp.max_layers);
-    count("grid", 1, 64, &sp.grid);  // 64³ cells: 262,144 boxes, a few MiB
+    if (r.contains("grid") && r["grid"].is_string()) {
+      if (r["grid"] != "auto") c.fail("render.grid must be \"auto\" or an integer from 1 to 64");
+    } else {
+      count("grid", 1, 64, &sp.grid);  // 64³ cells: 262,144 boxes, a few MiB
+    }
     if (r.contains("culling")) {
       if (!r["culling"].is_boolean()) c.fail("render.culling must be true or false");
       sp.culling = r["culling"].get<bool>();

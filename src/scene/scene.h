@@ -28,7 +28,7 @@ struct SphereScene {
   bool front_surfaces_only = false;  // render.surfaces: "front" (translucency; reserved)
   double tolerance = 8;              // render.tolerance (translucency; reserved)
   uint32_t max_layers = 32;          // render.max_layers (translucency; reserved)
-  uint32_t grid = 9;
+  uint32_t grid = 0;  // render.grid; 0: "auto"
   bool culling = true;
 };
 

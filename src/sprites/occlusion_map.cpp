@@ -1,6 +1,9 @@
 #include "sprites/occlusion_map.h"
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cfloat>
 #include <cmath>
 
 namespace zs {
@@ -19,10 +22,32 @@ OcclusionMap::OcclusionMap(uint32_t width, uint32_t height, uint32_t max_side) :
   bdirty_.assign(size_t(bw_) * bh_, 0);
 }
 
-double OcclusionMap::block_max(uint32_t bx, uint32_t by) const {
+float OcclusionMap::round_up(double z) {
+  float f = float(z);
+  // The next float up; for z > 0 that is the next bit pattern.
+  if (double(f) < z) f = z > 0 && f < FLT_MAX ? std::bit_cast<float>(std::bit_cast<uint32_t>(f) + 1) : std::nextafter(f, INFINITY);
+  return f;
+}
+
+// Depths are > 0 (or +inf), so the minimum is a compare-and-swap that only
+// ever lowers a texel; a plain load first keeps the common case (a texel
+// already nearer) free of atomics' cost.
+void OcclusionMap::write_min(size_t texel, float z) {
+  std::atomic_ref<float> a(level_[0][texel]);
+  float cur = a.load(std::memory_order_relaxed);
+  while (z < cur && !a.compare_exchange_weak(cur, z, std::memory_order_relaxed)) {
+  }
+}
+
+void OcclusionMap::mark(size_t block) {
+  std::atomic_ref<uint8_t> d(bdirty_[block]);
+  if (!d.load(std::memory_order_relaxed)) d.store(1, std::memory_order_relaxed);
+}
+
+float OcclusionMap::block_max(uint32_t bx, uint32_t by) const {
   const size_t b = size_t(by) * bw_ + bx;
   if (bdirty_[b]) {
-    double v = -INFINITY;
+    float v = -INFINITY;
     const uint32_t x1 = std::min(tw_, (bx + 1) * kSummary), y1 = std::min(th_, (by + 1) * kSummary);
     for (uint32_t y = by * kSummary; y < y1; ++y)
       for (uint32_t x = bx * kSummary; x < x1; ++x) v = std::max(v, level_[0][size_t(y) * tw_ + x]);
@@ -34,35 +59,40 @@ double OcclusionMap::block_max(uint32_t bx, uint32_t by) const {
 
 uint64_t OcclusionMap::bytes() const {
   uint64_t b = 0;
-  for (const auto& l : level_) b += l.size() * sizeof(double);
+  for (const auto& l : level_) b += l.size() * sizeof(float);
   return b;
 }
 
-void OcclusionMap::write_disc(double X, double Y, double rho, double z, int row0, int row1) {
+void OcclusionMap::write_disc(double X, double Y, double rho, double z, bool shared) {
   // Shrunk a little so a pixel centre on the rim (where the exact surface
   // meets the disc's depth) is never claimed.
   const double r = rho * (1 - 1e-6);
-  if (!(r > 0) || !std::isfinite(X) || !std::isfinite(Y)) return;
+  if (!(r > 0) || !std::isfinite(X) || !std::isfinite(Y) || !(z > 0)) return;
   const double r2 = r * r;
   if (r < 0.5) {
     // Most discs of a large set: at most the nearest pixel centre is inside,
     // and only a one-pixel texel can be covered (skipped when texels are
-    // larger: conservative).
+    // larger: conservative). floor(X + 0.5) differs from round(X) only at
+    // a half, where the centre is 0.5 > r away anyway.
     if (s_ != 1) return;
-    const double px = std::round(X), py = std::round(Y);
+    const double px = std::floor(X + 0.5), py = std::floor(Y + 0.5);
     if (!(px >= 0 && py >= 0 && px < double(tw_) && py < double(th_))) return;
-    if (int(py) < row0 || int(py) > row1) return;
     if ((px - X) * (px - X) + (py - Y) * (py - Y) > r2) return;
-    double& d = level_[0][size_t(py) * tw_ + size_t(px)];
-    d = std::min(d, z);
-    bdirty_[size_t(int(py) / int(kSummary)) * bw_ + size_t(px) / kSummary] = 1;
+    const size_t t = size_t(py) * tw_ + size_t(px), b = size_t(py) / kSummary * bw_ + size_t(px) / kSummary;
+    if (shared) {
+      write_min(t, round_up(z));
+      mark(b);
+    } else {
+      level_[0][t] = std::min(level_[0][t], round_up(z));
+      bdirty_[b] = 1;
+    }
     return;
   }
   const double ylo = std::floor((Y - r) / s_), yhi = std::ceil((Y + r) / s_);
-  if (!(yhi >= row0 && ylo <= row1)) return;
-  const int ty0 = std::max({0, row0, int(std::max(ylo, -1.0))});
-  const int ty1 = std::min({int(th_) - 1, row1, int(std::min(yhi, 2e9))});
-  std::vector<double>& m = level_[0];
+  if (!(yhi >= 0 && ylo <= double(th_) - 1)) return;
+  const int ty0 = std::max(0, int(std::max(ylo, -1.0)));
+  const int ty1 = std::min(int(th_) - 1, int(std::min(yhi, 2e9)));
+  const float zf = round_up(z);
   for (int ty = ty0; ty <= ty1; ++ty) {
     // The block's first and last pixel-centre rows; both must be inside.
     const double y0 = double(ty) * s_, y1 = double(std::min<uint32_t>((ty + 1) * s_, h_) - 1);
@@ -77,10 +107,15 @@ void OcclusionMap::write_disc(double X, double Y, double rho, double z, int row0
     if (double(w_) - 1 <= xr) hi = double(tw_) - 1;
     const int tx0 = int(std::max(lo, 0.0)), tx1 = int(std::min(hi, double(tw_) - 1));
     if (tx0 > tx1) continue;
-    double* row = m.data() + size_t(ty) * tw_;
-    for (int tx = tx0; tx <= tx1; ++tx) row[tx] = std::min(row[tx], z);
-    for (int bx = tx0 / int(kSummary); bx <= tx1 / int(kSummary); ++bx)
-      bdirty_[size_t(ty / int(kSummary)) * bw_ + bx] = 1;
+    const size_t row = size_t(ty) * tw_, brow = size_t(ty / int(kSummary)) * bw_;
+    if (shared) {
+      for (int tx = tx0; tx <= tx1; ++tx) write_min(row + size_t(tx), zf);
+      for (int bx = tx0 / int(kSummary); bx <= tx1 / int(kSummary); ++bx) mark(brow + bx);
+    } else {
+      float* m = level_[0].data() + row;
+      for (int tx = tx0; tx <= tx1; ++tx) m[tx] = std::min(m[tx], zf);
+      for (int bx = tx0 / int(kSummary); bx <= tx1 / int(kSummary); ++bx) bdirty_[brow + bx] = 1;
+    }
   }
 }
 
@@ -89,7 +124,7 @@ bool OcclusionMap::hidden(int i0, int i1, int j0, int j1, double z) const {
   i1 = std::min(i1, int(w_) - 1), j1 = std::min(j1, int(h_) - 1);
   if (i0 > i1 || j0 > j1) return true;  // no pixel centre: nothing to see
   const int tx0 = i0 / int(s_), tx1 = i1 / int(s_), ty0 = j0 / int(s_), ty1 = j1 / int(s_);
-  const std::vector<double>& m = level_[0];
+  const std::vector<float>& m = level_[0];
   const int K = int(kSummary);
   for (int by = ty0 / K; by <= ty1 / K; ++by)
     for (int bx = tx0 / K; bx <= tx1 / K; ++bx) {
@@ -110,11 +145,11 @@ void OcclusionMap::build_pyramid() {
   lh_.resize(1);
   while (lw_.back() > 1 || lh_.back() > 1) {
     const uint32_t pw = lw_.back(), ph = lh_.back(), nw = (pw + 1) / 2, nh = (ph + 1) / 2;
-    const std::vector<double>& p = level_.back();
-    std::vector<double> n(size_t(nw) * nh);
+    const std::vector<float>& p = level_.back();
+    std::vector<float> n(size_t(nw) * nh);
     for (uint32_t y = 0; y < nh; ++y)
       for (uint32_t x = 0; x < nw; ++x) {
-        double v = -INFINITY;
+        float v = -INFINITY;
         for (uint32_t dy = 0; dy < 2; ++dy)
           for (uint32_t dx = 0; dx < 2; ++dx) {
             const uint32_t sx = std::min(2 * x + dx, pw - 1), sy = std::min(2 * y + dy, ph - 1);
@@ -139,7 +174,7 @@ bool OcclusionMap::hidden_pyramid(int i0, int i1, int j0, int j1, double z) cons
     tx0 >>= 1, tx1 >>= 1, ty0 >>= 1, ty1 >>= 1;
     ++k;
   }
-  const std::vector<double>& m = level_[k];
+  const std::vector<float>& m = level_[k];
   for (int ty = ty0; ty <= ty1; ++ty)
     for (int tx = tx0; tx <= tx1; ++tx)
       if (!(occlusion_margin(m[size_t(ty) * lw_[k] + tx]) < z)) return false;

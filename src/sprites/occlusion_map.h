@@ -6,6 +6,10 @@
 // whatever lies behind it everywhere is hidden. A plane parallel to the image
 // projects to a circle in both projections, so the disc is exact there too.
 //
+// Depths are stored as floats rounded up (never nearer than the double they
+// stand for), which halves the map's memory traffic and keeps it
+// conservative.
+//
 // For large images the map is coarser than the image: one texel per s×s
 // pixel block (s chosen so the map is at most 1024 texels a side), written
 // only where a disc covers every pixel centre of the block. A one-level
@@ -23,9 +27,11 @@ class OcclusionMap {
  public:
   OcclusionMap(uint32_t width, uint32_t height, uint32_t max_side = 1024);
 
-  // Disc of radius rho pixels centred at (X, Y) (pixel coordinates), depth z;
-  // only texel rows [row0, row1] are written (threads draw bands apart).
-  void write_disc(double X, double Y, double rho, double z, int row0 = 0, int row1 = 1 << 30);
+  // Disc of radius rho pixels centred at (X, Y) (pixel coordinates), depth
+  // z > 0. With `shared`, threads may draw discs at once: a texel takes the
+  // minimum by an atomic compare-and-swap (so the map does not depend on the
+  // order); without, plain stores (a row's loop vectorizes).
+  void write_disc(double X, double Y, double rho, double z, bool shared = false);
   // True when every texel over pixel-centre range [i0, i1] x [j0, j1] holds a
   // depth strictly nearer than z: anything whose surface lies at depth ≥ z
   // inside that box is hidden. Reads the map itself (used while it grows).
@@ -36,25 +42,28 @@ class OcclusionMap {
   bool hidden_pyramid(int i0, int i1, int j0, int j1, double z) const;
 
   uint32_t block() const { return s_; }
-  // Rows of texels that share a summary block: bands drawn by different
-  // threads must start on a multiple of this.
+  // Texels per side of the summary blocks (below).
   static constexpr uint32_t kSummary = 16;
   uint32_t texels_x() const { return tw_; }
   uint32_t texels_y() const { return th_; }
   double texel(uint32_t tx, uint32_t ty) const { return level_[0][size_t(ty) * tw_ + tx]; }
+  // The float a depth is stored as: the nearest float not below z.
+  static float round_up(double z);
   uint64_t bytes() const;
 
  private:
   uint32_t w_, h_, s_, tw_, th_;
-  std::vector<std::vector<double>> level_;  // level_[0]: the map; then max levels
+  std::vector<std::vector<float>> level_;  // level_[0]: the map; then max levels
   std::vector<uint32_t> lw_, lh_;
   // While the map grows: the max over each kSummary² block of texels, kept
   // lazily (a block written since is recomputed when a test needs it), so
   // testing a large box reads blocks, not texels.
   uint32_t bw_, bh_;
-  mutable std::vector<double> bmax_;
+  mutable std::vector<float> bmax_;
   mutable std::vector<uint8_t> bdirty_;
-  double block_max(uint32_t bx, uint32_t by) const;
+  float block_max(uint32_t bx, uint32_t by) const;
+  void write_min(size_t texel, float z);  // atomic
+  void mark(size_t block);                // atomic
 };
 
 // A margin for depths compared across two computations of a surface (the

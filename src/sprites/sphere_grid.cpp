@@ -12,10 +12,12 @@ uint64_t SphereGrid::bytes() const {
          (lo.size() + hi.size()) * sizeof(glm::dvec3);
 }
 
+uint32_t auto_sphere_grid(uint64_t count) {
+  return uint32_t(std::clamp(std::round(std::cbrt(double(count) / 800.0)), 9.0, 64.0));
+}
+
 SphereGrid build_sphere_grid(const SphereSet& s, uint32_t n) {
   SphereGrid g;
-  g.n = std::max<uint32_t>(1, n);
-  const uint32_t cells = g.cells();
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
   for (size_t i = 0; i < s.size(); ++i) {
     if (!drawable_sphere(s.centres[i], s.radii[i])) {
@@ -25,6 +27,8 @@ SphereGrid build_sphere_grid(const SphereSet& s, uint32_t n) {
     lo = glm::min(lo, s.centres[i]);
     hi = glm::max(hi, s.centres[i]);
   }
+  g.n = n ? n : auto_sphere_grid(s.size() - g.invalid);
+  const uint32_t cells = g.cells();
   // The cell of a centre; clamped so the upper faces belong to the last cell.
   const glm::dvec3 ext = hi - lo;
   auto cell_of = [&](const glm::dvec3& c) {

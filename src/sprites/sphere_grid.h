@@ -31,8 +31,15 @@ struct SphereGrid {
 };
 
 // Bins every drawable sphere of `s` into an n³ grid over the box of the
-// centres (n ≥ 1).
+// centres; n = 0 picks auto_sphere_grid() of the drawable count.
 SphereGrid build_sphere_grid(const SphereSet& s, uint32_t n);
+
+// The grid resolution `render.grid: "auto"` takes for `count` spheres: about
+// 800 spheres a cell (cbrt(count / 800)), at least 9 (the digest's grid) and
+// at most 64. Finer cells let occlusion culling drop more of a dense set
+// before its spheres are touched one by one (docs/spheres-bench.md: C4 at
+// 32³ takes half the time of 9³); a cell costs a box test per frame.
+uint32_t auto_sphere_grid(uint64_t count);
 
 // True when the sphere can be drawn (finite centre, finite radius > 0).
 inline bool drawable_sphere(const glm::dvec3& c, double r) {

@@ -32,6 +32,9 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 // A thread's scratch, reused from tile to tile.
 // Pixels per side of the blocks whose farthest depth a tile keeps.
 constexpr int kBlock = 8;
+// Spheres whose pixel box holds at most this many pixel centres skip the
+// row scan (most spheres of a large set).
+constexpr int kSmallBox = 16;
 
 struct alignas(128) TileState {
   DepthBuffer depth;
@@ -104,11 +107,11 @@ struct SphereRenderer::Impl {
     const auto t_vis = Clock::now();
     std::vector<uint32_t> visible = visible_spheres(s, g, view, rs.culling, &S.vis, threads);
     S.ms_visibility = ms_since(t_vis);
-    sort_front_to_back(visible, threads);
     shared += visible.size() * 4 + S.vis.map_bytes;
 
-    // Bins, in the visible order: each sphere's tile range (in parallel),
-    // then count and fill.
+    // Bins, nearest first: each sphere's nearest depth and tile range in one
+    // pass over the visible list (in parallel, in the grid's memory order),
+    // then sorted by depth, counted and filled.
     const auto t_bin = Clock::now();
     const Viewport image{0, 0, int(rs.width), int(rs.height)};
     const uint32_t cols = grid.cols(), size = grid.size;
@@ -116,7 +119,8 @@ struct SphereRenderer::Impl {
       uint32_t c0, c1, r0, r1;  // c0 > c1: no pixel centre of the image
     };
     std::vector<Box> boxes(visible.size());
-    shared += boxes.size() * sizeof(Box);
+    std::vector<std::pair<double, uint32_t>> key(visible.size());  // (nearest depth, index into visible)
+    shared += boxes.size() * (sizeof(Box) + sizeof(key[0]));
     check(shared);
     tbb::task_arena arena(threads);
     arena.execute([&] {
@@ -124,6 +128,7 @@ struct SphereRenderer::Impl {
         for (size_t q = br.begin(); q < br.end(); ++q) {
           const uint32_t e = visible[q];
           const glm::dvec3 c = to_camera(view, g.centre[e]);
+          key[q] = {c.z - g.radius[e], uint32_t(q)};
           const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, g.radius[e]);
           int i0, i1, j0, j1;
           if (!sphere_pixel_range(su, image, &i0, &i1, &j0, &j1)) {
@@ -133,9 +138,15 @@ struct SphereRenderer::Impl {
           boxes[q] = {uint32_t(i0) / size, uint32_t(i1) / size, uint32_t(j0) / size, uint32_t(j1) / size};
         }
       });
+      // By nearest depth, then by position in the visible list (the cells'
+      // order), so the order, like the image, is the same every run. A
+      // tile's first spheres then hide most of the rest, which its block
+      // test skips whole; the order changes no pixel (the depth test is
+      // order-independent), only the work.
+      tbb::parallel_sort(key.begin(), key.end());
     });
     bin_offset.assign(uint64_t(grid.count()) + 1, 0);
-    for (const Box& b : boxes)
+    for (const Box& b : boxes)  // counting needs no order
       for (uint32_t r = b.r0; b.c0 <= b.c1 && r <= b.r1; ++r)
         for (uint32_t c = b.c0; c <= b.c1; ++c) ++bin_offset[uint64_t(r) * cols + c + 1];
     for (uint64_t t = 0; t < grid.count(); ++t) bin_offset[t + 1] += bin_offset[t];
@@ -145,30 +156,14 @@ struct SphereRenderer::Impl {
     S.shared_bytes = shared;
     bin_ids.resize(S.bin_entries);
     std::vector<uint64_t> next(bin_offset.begin(), bin_offset.end() - 1);
-    for (size_t q = 0; q < visible.size(); ++q) {
+    for (const auto& kq : key) {
+      const uint32_t q = kq.second;
       const Box& b = boxes[q];
       for (uint32_t r = b.r0; b.c0 <= b.c1 && r <= b.r1; ++r)
         for (uint32_t c = b.c0; c <= b.c1; ++c) bin_ids[next[uint64_t(r) * cols + c]++] = visible[q];
     }
     S.ms_binning = ms_since(t_bin);
     S.ms_setup = ms_since(t_start);
-  }
-
-  // Nearest first (by each sphere's nearest depth; entry order on ties, so the
-  // order, like the image, is the same every run): a tile's first spheres
-  // then hide most of the rest, which its block test skips whole. The order
-  // changes no pixel (the depth test is order-independent), only the work.
-  void sort_front_to_back(std::vector<uint32_t>& visible, int threads) {
-    std::vector<std::pair<double, uint32_t>> key(visible.size());
-    tbb::task_arena arena(threads);
-    arena.execute([&] {
-      tbb::parallel_for(size_t(0), visible.size(), [&](size_t q) {
-        const uint32_t e = visible[q];
-        key[q] = {to_camera(view, g.centre[e]).z - g.radius[e], e};
-      });
-      tbb::parallel_sort(key.begin(), key.end());
-    });
-    for (size_t q = 0; q < key.size(); ++q) visible[q] = key[q].second;
   }
 
   // Whether every block of the tile under pixel box [i0, i1] x [j0, j1] (tile
@@ -190,6 +185,12 @@ struct SphereRenderer::Impl {
         if (!(ts.bmax[b] < z)) return false;
       }
     return true;
+  }
+
+  // A sphere wrote into these pixels: their blocks' farthest depths may have moved.
+  static void mark_blocks(TileState& ts, uint32_t bw, int i0, int i1, int j0, int j1) {
+    for (int by = j0 / kBlock; by <= j1 / kBlock; ++by)
+      for (int bx = i0 / kBlock; bx <= i1 / kBlock; ++bx) ts.bdirty[size_t(by) * bw + size_t(bx)] = 1;
   }
 
   // One tile: nearest (depth, id) per pixel, then shade each pixel once.
@@ -218,12 +219,32 @@ struct SphereRenderer::Impl {
         ++S.spheres_block_rejected;
         continue;
       }
+      ++S.spheres_scanned;
+      const uint64_t writes_before = S.depth_writes;
+      if ((i1 - i0 + 1) * (j1 - j0 + 1) <= kSmallBox) {
+        // Small on screen: every pixel centre of the (conservative) box is
+        // tried directly, cheaper than finding each row's run first; the
+        // pixels hit are the same ones.
+        for (int j = j0; j <= j1; ++j)
+          for (int i = i0; i <= i1; ++i) {
+            const size_t p = size_t(j) * w + size_t(i);
+            if (ts.depth.depth(p) < z_reject) {
+              ++S.early_rejected;
+              continue;
+            }
+            ++S.pixel_tests;
+            SphereHit hit;
+            if (!sphere_hit(su, double(i + vp.x0), double(j + vp.y0), &hit)) continue;
+            ++S.fragments;
+            if (ts.depth.test_write(p, hit.t, id)) ++S.depth_writes;
+          }
+        if (S.depth_writes != writes_before) mark_blocks(ts, bw, i0, i1, j0, j1);
+        continue;
+      }
       ts.spans.clear();
       ScanCounters sc;
       scan_sphere(su, vp, ts.spans, sc);
-      ++S.spheres_scanned;
       S.pixel_tests += sc.pixel_tests;
-      const uint64_t writes_before = S.depth_writes;
       for (const RowSpan& row : ts.spans.rows) {
         const size_t base = size_t(row.y - vp.y0) * w - size_t(vp.x0);
         for (int32_t i = row.x0; i <= row.x1; ++i) {
@@ -238,9 +259,7 @@ struct SphereRenderer::Impl {
           if (ts.depth.test_write(p, hit.t, id)) ++S.depth_writes;
         }
       }
-      if (S.depth_writes != writes_before)  // its blocks' farthest depths may have moved
-        for (int by = j0 / kBlock; by <= j1 / kBlock; ++by)
-          for (int bx = i0 / kBlock; bx <= i1 / kBlock; ++bx) ts.bdirty[size_t(by) * bw + size_t(bx)] = 1;
+      if (S.depth_writes != writes_before) mark_blocks(ts, bw, i0, i1, j0, j1);
     }
     resolve(ts, r);
     return ts.out.data();
@@ -251,6 +270,12 @@ struct SphereRenderer::Impl {
     ts.out.resize(size_t(w) * h * 5);
     float* out = ts.out.data();
     const double* bg = rs.background;
+    // Neighbouring pixels mostly show the same sphere: its set-up is kept
+    // while the id repeats (the same values, so the same image).
+    uint32_t last = kNoId;
+    glm::dvec3 c(0);
+    double R = 1;
+    SphereSetup su{};
     for (uint32_t y = 0; y < h; ++y)
       for (uint32_t x = 0; x < w; ++x) {
         const size_t p = size_t(y) * w + x;
@@ -262,9 +287,12 @@ struct SphereRenderer::Impl {
           continue;
         }
         const double X = double(r.x0 + x), Y = double(r.y0 + y);
-        const glm::dvec3 c = to_camera(view, s.centres[id]);
-        const double R = s.radii[id];
-        const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, R);
+        if (id != last) {
+          c = to_camera(view, s.centres[id]);
+          R = s.radii[id];
+          su = setup_sphere(cam, c.x, c.y, c.z, R);
+          last = id;
+        }
         SphereHit hit{0, 0, 0, false};
         sphere_hit(su, X, Y, &hit);  // the same call that won the depth test
         const double a = (X - cam.ox) / cam.sx, b = (cam.oy - Y) / cam.sy;

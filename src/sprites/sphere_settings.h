@@ -27,7 +27,7 @@ struct SphereRenderSettings {
   // its cells, front-to-back occlusion culling of cells against the
   // conservative centre-disc depth map, and the one-level max-depth pyramid
   // test per sphere. Each is lossless: the image is bit-identical without.
-  uint32_t grid = 9;
+  uint32_t grid = 0;  // cells per axis; 0: auto_sphere_grid() of the set's size
   bool culling = true;
   int threads = 1;
   uint32_t tile_size = 64;

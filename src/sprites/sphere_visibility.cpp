@@ -113,10 +113,6 @@ bool box_screen_range(const View& v, const glm::dvec3& lo, const glm::dvec3& hi,
 void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<OcclusionMap>* map_out,
                 std::vector<uint32_t>* survivors, VisibilityStats* st, int threads) {
   VisibilityStats& S = *st;
-  struct Disc {
-    double X, Y, rho, z;  // rho 0: not an occluder
-  };
-  std::vector<Disc> discs;
   tbb::task_arena arena(std::max(1, threads));
   // 1. View-volume culling of the cells.
   auto t0 = Clock::now();
@@ -160,60 +156,70 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
   *map_out = std::make_unique<OcclusionMap>(view.width(), view.height(),
                                             std::min<uint32_t>(1024, (side + block - 1) / block));
   OcclusionMap& map = **map_out;
-  for (size_t q : order) {
-    const uint32_t k = cells[q];
-    const CellRange& c = cr[q];
-    if (c.bounded && map.hidden(c.i0, c.i1, c.j0, c.j1, c.znear)) {
-      ++S.cells_occluded;
-      S.spheres_occluded_cells += g.count(k);
-      continue;
-    }
-    survivors->push_back(k);
-    // Its spheres become occluders: the disc through each centre, for the
-    // spheres wholly in front of the eye (plane). The discs are set up in
-    // parallel, then drawn by bands of map rows, one band per task: a texel
-    // takes the minimum of its discs, so the map does not depend on the
-    // split.
-    const uint64_t e0 = g.offset[k], n = g.count(k);
-    discs.resize(n);
-    auto set_up = [&](uint64_t q0, uint64_t q1) {
-      uint64_t m = 0;
-      for (uint64_t q = q0; q < q1; ++q) {
-        const glm::dvec3 cc = to_camera(view, g.centre[e0 + q]);
-        const double R = g.radius[e0 + q];
-        Disc& d = discs[q];
-        if (!(cc.z - R > 0)) {
-          d.rho = 0;
-          continue;
-        }
+  auto draw = [&](uint64_t q0, uint64_t q1, bool shared) {
+    // In chunks: the set-up loop has no branches the compiler cannot turn
+    // into selects (it vectorizes), the drawing loop reads it back from L1.
+    constexpr uint64_t kChunk = 512;
+    double X[kChunk], Y[kChunk], rho[kChunk], z[kChunk];
+    uint64_t m = 0;
+    for (uint64_t c0 = q0; c0 < q1; c0 += kChunk) {
+      const uint64_t n = std::min(kChunk, q1 - c0);
+      for (uint64_t q = 0; q < n; ++q) {
+        const glm::dvec3 cc = to_camera(view, g.centre[c0 + q]);
+        const double R = g.radius[c0 + q];
         const double inv = view.perspective() ? 1.0 / cc.z : 1.0;
-        d = {view.scale_x() * cc.x * inv + view.offset_x(), view.offset_y() - view.scale_y() * cc.y * inv,
-             view.scale_x() * R * inv, cc.z};
-        ++m;
+        X[q] = view.scale_x() * cc.x * inv + view.offset_x();
+        Y[q] = view.offset_y() - view.scale_y() * cc.y * inv;
+        rho[q] = cc.z - R > 0 ? view.scale_x() * R * inv : 0.0;  // 0: not an occluder
+        z[q] = cc.z;
       }
-      return m;
-    };
-    auto draw = [&](int r0, int r1) {
-      for (const Disc& d : discs)
-        if (d.rho > 0) map.write_disc(d.X, d.Y, d.rho, d.z, r0, r1);
-    };
-    // Threads pay off only on cells large enough to cover their start.
-    if (threads == 1 || n < 8192) {
-      S.occluders += set_up(0, n);
-      draw(0, int(map.texels_y()) - 1);
+      for (uint64_t q = 0; q < n; ++q)
+        if (rho[q] > 0) {
+          map.write_disc(X[q], Y[q], rho[q], z[q], shared);
+          ++m;
+        }
+    }
+    return m;
+  };
+  // Cells are drawn in groups: each cell of a group is tested against the
+  // map of the groups before it, then the group's spheres are drawn, split
+  // among the threads. On one thread a group is one cell (each cell sees
+  // every cell before it); on more, groups gather at least kGroup spheres so
+  // that small cells (a fine grid) still give every thread work, at the
+  // price of not culling a cell by the others of its group.
+  constexpr uint64_t kGroup = 16384, kTask = 2048;
+  const uint64_t group_min = threads == 1 ? 1 : kGroup;
+  std::vector<std::pair<uint64_t, uint64_t>> chunks;  // entry ranges of the group's cells
+  size_t next = 0;
+  while (next < order.size()) {
+    chunks.clear();
+    uint64_t spheres = 0;
+    while (next < order.size() && spheres < group_min) {
+      const size_t q = order[next++];
+      const uint32_t k = cells[q];
+      const CellRange& c = cr[q];
+      if (c.bounded && map.hidden(c.i0, c.i1, c.j0, c.j1, c.znear)) {
+        ++S.cells_occluded;
+        S.spheres_occluded_cells += g.count(k);
+        continue;
+      }
+      survivors->push_back(k);
+      spheres += g.count(k);
+      for (uint64_t e = g.offset[k]; e < g.offset[k + 1]; e += kTask)
+        chunks.push_back({e, std::min(e + kTask, g.offset[k + 1])});
+    }
+    // The group's spheres become occluders: the disc through each centre,
+    // for the spheres wholly in front of the eye (plane). Threads draw
+    // disjoint chunks at once; a texel takes the minimum of its discs
+    // (occlusion_map.h), so the map does not depend on the split.
+    if (threads == 1 || chunks.size() < 2) {
+      for (const auto& ch : chunks) S.occluders += draw(ch.first, ch.second, false);
       continue;
     }
     std::atomic<uint64_t> drawn{0};
     arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 2048), [&](const tbb::blocked_range<uint64_t>& br) {
-        drawn += set_up(br.begin(), br.end());
-      });
-      // Bands of whole summary-block rows: no two tasks mark the same block.
-      const int K = int(OcclusionMap::kSummary), brows = (int(map.texels_y()) + K - 1) / K;
-      const int bands = std::min(brows, threads);  // each band reads every disc: no more bands than threads
-      tbb::parallel_for(0, bands, [&](int b) {
-        draw(int(int64_t(brows) * b / bands) * K, int(int64_t(brows) * (b + 1) / bands) * K - 1);
-      });
+      tbb::parallel_for(size_t(0), chunks.size(),
+                        [&](size_t i) { drawn += draw(chunks[i].first, chunks[i].second, true); });
     });
     S.occluders += drawn;
   }

@@ -270,6 +270,11 @@ TEST(Scene, SphereSceneErrors) {
   EXPECT_NE(err(R"({"spheres": "a.sph", "shading": {"model": "toon"}})").find("shading.model"), std::string::npos);
   EXPECT_NE(err(R"({"spheres": "a.sph", "shading": {"ambient": 2}})").find("shading.ambient"), std::string::npos);
   EXPECT_NE(err(R"({"spheres": "a.sph", "render": {"grid": 0}})").find("render.grid"), std::string::npos);
+  EXPECT_NE(err(R"({"spheres": "a.sph", "render": {"grid": "fine"}})").find("render.grid must be \"auto\""),
+            std::string::npos);
+  // "auto" and no key are the same: resolved from the set's size when the grid is built.
+  EXPECT_EQ(parse_scene(R"({"spheres": "a.sph", "render": {"grid": "auto"}})", "s.json", ".").spheres.grid, 0u);
+  EXPECT_EQ(parse_scene(R"({"spheres": "a.sph"})", "s.json", ".").spheres.grid, 0u);
   EXPECT_NE(err(R"({"spheres": "a.sph", "render": {"integrator": "exact"}})").find("unknown key 'render.integrator'"),
             std::string::npos);
   EXPECT_NE(err(R"({"mesh": "m.off", "render": {"mode": "opaque"}})").find("unknown key 'render.mode'"),

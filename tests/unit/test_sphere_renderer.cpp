@@ -209,6 +209,31 @@ TEST(SphereRenderer, CentreDiscMapIsNeverNearerThanTheExactDepth) {
   }
 }
 
+// The grid only changes the work: every resolution, "auto" included, gives the
+// same image as no culling at all; "auto" follows the set's size.
+TEST(SphereRenderer, GridResolutionChangesNoPixel) {
+  EXPECT_EQ(auto_sphere_grid(0), 9u);
+  EXPECT_EQ(auto_sphere_grid(3000), 9u);
+  EXPECT_EQ(auto_sphere_grid(1000000), 11u);
+  EXPECT_EQ(auto_sphere_grid(27000000), 32u);
+  EXPECT_EQ(auto_sphere_grid(uint64_t(1) << 40), 64u);
+  const SphereSet s = cluster_set(3000, 5);
+  EXPECT_EQ(build_sphere_grid(s, 0).n, 9u);
+  for (Projection p : {Projection::Orthographic, Projection::Perspective}) {
+    SphereRenderSettings off = settings(p, 90, 70);
+    off.culling = false;
+    const Rendered ref = render(s, off);
+    for (uint32_t n : {0u, 1u, 4u, 17u, 40u}) {
+      SphereRenderSettings on = settings(p, 90, 70);
+      on.grid = n;
+      const Rendered a = render(s, on);
+      EXPECT_EQ(a.rgba.rgba, ref.rgba.rgba) << n;
+      EXPECT_EQ(0, std::memcmp(a.z.data(), ref.z.data(), ref.z.size() * 4)) << n;
+      EXPECT_EQ(a.stats.vis.cells, (n ? n : 9u) * (n ? n : 9u) * (n ? n : 9u));
+    }
+  }
+}
+
 // Large spheres on screen: the occlusion map takes coarse texels (a block of
 // pixels each); culling must still change nothing.
 TEST(SphereRenderer, CullingIsLosslessWithCoarseOcclusionTexels) {
