@@ -148,6 +148,7 @@ def run_ours(scene_path, out, threads, basic, repeat, budget):
         "spheres_view_culled": cul.get("spheres_view_culled"),
         "spheres_in_occluded_cells": cul.get("spheres_in_occluded_cells"),
         "spheres_pyramid_culled": cul.get("spheres_pyramid_culled"),
+        "spheres_pixel_culled": cul.get("spheres_pixel_culled"),
         "spheres_offscreen": cul.get("spheres_offscreen"),
         "spheres_visible": cul.get("spheres_visible"),
         "fragments": j.get("fragments"), "rendered_pixels": j.get("rendered_pixels"),

@@ -172,6 +172,7 @@ void write_sphere_stats(const std::string& path, const SphereStats& S, const Sce
         {"spheres_view_culled", V.spheres_view_culled},
         {"spheres_in_occluded_cells", V.spheres_occluded_cells},
         {"spheres_pyramid_culled", V.spheres_pyramid_culled},
+        {"spheres_pixel_culled", V.spheres_pixel_culled},
         {"spheres_offscreen", V.spheres_offscreen},
         {"occluders", V.occluders},
         {"spheres_visible", V.spheres_visible}}},

@@ -63,29 +63,29 @@ uint64_t OcclusionMap::bytes() const {
   return b;
 }
 
+void OcclusionMap::write_texel(uint32_t x, uint32_t y, double z, bool shared) {
+  const size_t t = size_t(y) * tw_ + x, b = size_t(y / kSummary) * bw_ + size_t(x / kSummary);
+  if (shared) {
+    write_min(size_t(t), round_up(z));
+    mark(b);
+  } else {
+    level_[0][size_t(t)] = std::min(level_[0][size_t(t)], round_up(z));
+    bdirty_[b] = 1;
+  }
+}
+
 void OcclusionMap::write_disc(double X, double Y, double rho, double z, bool shared) {
-  // Shrunk a little so a pixel centre on the rim (where the exact surface
-  // meets the disc's depth) is never claimed.
-  const double r = rho * (1 - 1e-6);
+  const double r = rho * kShrink;
   if (!(r > 0) || !std::isfinite(X) || !std::isfinite(Y) || !(z > 0)) return;
   const double r2 = r * r;
-  if (r < 0.5) {
-    // Most discs of a large set: at most the nearest pixel centre is inside,
-    // and only a one-pixel texel can be covered (skipped when texels are
-    // larger: conservative). floor(X + 0.5) differs from round(X) only at
-    // a half, where the centre is 0.5 > r away anyway.
-    if (s_ != 1) return;
-    const double px = std::floor(X + 0.5), py = std::floor(Y + 0.5);
-    if (!(px >= 0 && py >= 0 && px < double(tw_) && py < double(th_))) return;
-    if ((px - X) * (px - X) + (py - Y) * (py - Y) > r2) return;
-    const size_t t = size_t(py) * tw_ + size_t(px), b = size_t(py) / kSummary * bw_ + size_t(px) / kSummary;
-    if (shared) {
-      write_min(t, round_up(z));
-      mark(b);
-    } else {
-      level_[0][t] = std::min(level_[0][t], round_up(z));
-      bdirty_[b] = 1;
-    }
+  if (small_disc(rho)) {
+    // At most the nearest pixel centre is inside, and only a one-pixel
+    // texel can be covered (skipped when texels are larger: conservative).
+    // floor(X + 0.5) differs from round(X) only at a half, where the centre
+    // is 0.5 > r away anyway.
+    int32_t ty;
+    const int32_t tx = small_texel(X, Y, rho, &ty);
+    if (tx >= 0) write_texel(uint32_t(tx), uint32_t(ty), z, shared);
     return;
   }
   const double ylo = std::floor((Y - r) / s_), yhi = std::ceil((Y + r) / s_);

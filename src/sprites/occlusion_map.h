@@ -17,11 +17,17 @@
 // with at most 2×2 reads (the per-sphere test of §2.2.4).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace zs {
+
+// A margin for depths compared across two computations of a surface (the
+// disc's centre depth here, the exact hit in the renderer): hidden only when
+// nearer by more than rounding could explain.
+inline double occlusion_margin(double z) { return z + 1e-9 * (z < 0 ? -z : z) + 1e-300; }
 
 class OcclusionMap {
  public:
@@ -32,10 +38,33 @@ class OcclusionMap {
   // minimum by an atomic compare-and-swap (so the map does not depend on the
   // order); without, plain stores (a row's loop vectorizes).
   void write_disc(double X, double Y, double rho, double z, bool shared = false);
+  // The same for a disc of radius rho < kSmall pixels (most discs of a large
+  // set), split so a caller can set up many at once in a vectorized loop:
+  // small_texel gives the one texel the disc can cover (the nearest pixel
+  // centre, when inside the disc and texels are pixels) or -1, and
+  // write_texel draws depth z there.
+  static constexpr double kSmall = 0.5;
+  static bool small_disc(double rho) { return rho * kShrink < kSmall; }
+  // The column of the texel (its row in *ty), or -1.
+  int32_t small_texel(double X, double Y, double rho, int32_t* ty) const {
+    const double r = rho * kShrink;
+    const double px = std::floor(X + 0.5), py = std::floor(Y + 0.5);
+    // Bitwise &: no branches, so a caller's loop over many discs vectorizes.
+    const bool in = (s_ == 1) & (px >= 0) & (py >= 0) & (px < double(tw_)) & (py < double(th_)) &
+                    ((px - X) * (px - X) + (py - Y) * (py - Y) <= r * r);
+    *ty = in ? int32_t(py) : 0;
+    return in ? int32_t(px) : -1;
+  }
+  void write_texel(uint32_t tx, uint32_t ty, double z, bool shared);
   // True when every texel over pixel-centre range [i0, i1] x [j0, j1] holds a
   // depth strictly nearer than z: anything whose surface lies at depth ≥ z
   // inside that box is hidden. Reads the map itself (used while it grows).
   bool hidden(int i0, int i1, int j0, int j1, double z) const;
+  // True when the texel over pixel centre (i, j), inside the image, is
+  // strictly nearer than z.
+  bool hidden_at(int i, int j, double z) const {
+    return occlusion_margin(level_[0][size_t(uint32_t(j) / s_) * tw_ + uint32_t(i) / s_]) < z;
+  }
   // Builds the max pyramid; call once the map is complete.
   void build_pyramid();
   // The same question on the pyramid: one level, at most 2×2 elements.
@@ -52,6 +81,9 @@ class OcclusionMap {
   uint64_t bytes() const;
 
  private:
+  // Discs are shrunk a little so a pixel centre on the rim (where the exact
+  // surface meets the disc's depth) is never claimed.
+  static constexpr double kShrink = 1 - 1e-6;
   uint32_t w_, h_, s_, tw_, th_;
   std::vector<std::vector<float>> level_;  // level_[0]: the map; then max levels
   std::vector<uint32_t> lw_, lh_;
@@ -66,9 +98,5 @@ class OcclusionMap {
   void mark(size_t block);                // atomic
 };
 
-// A margin for depths compared across two computations of a surface (the
-// disc's centre depth here, the exact hit in the renderer): hidden only when
-// nearer by more than rounding could explain.
-inline double occlusion_margin(double z) { return z + 1e-9 * (z < 0 ? -z : z) + 1e-300; }
 
 }  // namespace zs

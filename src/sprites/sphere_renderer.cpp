@@ -32,9 +32,6 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 // A thread's scratch, reused from tile to tile.
 // Pixels per side of the blocks whose farthest depth a tile keeps.
 constexpr int kBlock = 8;
-// Spheres whose pixel box holds at most this many pixel centres skip the
-// row scan (most spheres of a large set).
-constexpr int kSmallBox = 16;
 
 struct alignas(128) TileState {
   DepthBuffer depth;
@@ -221,7 +218,7 @@ struct SphereRenderer::Impl {
       }
       ++S.spheres_scanned;
       const uint64_t writes_before = S.depth_writes;
-      if ((i1 - i0 + 1) * (j1 - j0 + 1) <= kSmallBox) {
+      if ((i1 - i0 + 1) * (j1 - j0 + 1) <= kSmallSphereBox) {
         // Small on screen: every pixel centre of the (conservative) box is
         // tried directly, cheaper than finding each row's run first; the
         // pixels hit are the same ones.

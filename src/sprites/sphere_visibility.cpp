@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cfloat>
 #include <chrono>
 #include <memory>
 #include <cmath>
@@ -10,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -162,16 +164,23 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
     constexpr uint64_t kChunk = 512;
     double X[kChunk], Y[kChunk], rho[kChunk], z[kChunk];
     uint64_t m = 0;
+    const bool persp = view.perspective();
+    const glm::dvec3 eye = view.eye(), Rt = view.right(), Up = view.up(), Fw = view.forward();
+    const double sx = view.scale_x(), sy = view.scale_y(), ox = view.offset_x(), oy = view.offset_y();
     for (uint64_t c0 = q0; c0 < q1; c0 += kChunk) {
       const uint64_t n = std::min(kChunk, q1 - c0);
+      const double* centre = &g.centre[c0].x;  // plain doubles: see silhouette_boxes_t
       for (uint64_t q = 0; q < n; ++q) {
-        const glm::dvec3 cc = to_camera(view, g.centre[c0 + q]);
+        const double dx = centre[3 * q] - eye.x, dy = centre[3 * q + 1] - eye.y, dz = centre[3 * q + 2] - eye.z;
+        const double cx = dx * Rt.x + dy * Rt.y + dz * Rt.z;
+        const double cy = dx * Up.x + dy * Up.y + dz * Up.z;
+        const double cz = dx * Fw.x + dy * Fw.y + dz * Fw.z;
         const double R = g.radius[c0 + q];
-        const double inv = view.perspective() ? 1.0 / cc.z : 1.0;
-        X[q] = view.scale_x() * cc.x * inv + view.offset_x();
-        Y[q] = view.offset_y() - view.scale_y() * cc.y * inv;
-        rho[q] = cc.z - R > 0 ? view.scale_x() * R * inv : 0.0;  // 0: not an occluder
-        z[q] = cc.z;
+        const double inv = persp ? 1.0 / cz : 1.0;
+        X[q] = sx * cx * inv + ox;
+        Y[q] = oy - sy * cy * inv;
+        rho[q] = cz - R > 0 ? sx * R * inv : 0.0;  // 0: not an occluder
+        z[q] = cz;
       }
       for (uint64_t q = 0; q < n; ++q)
         if (rho[q] > 0) {
@@ -226,35 +235,71 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
   S.ms_occlusion = ms_since(t0);
 }
 
-// Pixel-centre box (clamped to the image; false when empty) that holds the
-// silhouette of a sphere wholly in front of the eye (c.z − r > 0), cheaper
-// than the exact conic: orthographic, the circle's box; perspective, for a
-// surface point c + r·n, |x/z − cx/cz| = r·|nx·cz − nz·cx| / (cz·(cz + r·nz))
-// ≤ r·√(cx² + cz²) / (cz·(cz − r)) by Cauchy–Schwarz (and the same in y).
-// Returns 1 for a box, 0 when it holds no pixel centre of the image, and -1
-// when the bound is not finite (no box: the caller takes the exact path).
-int silhouette_box(const View& v, const glm::dvec3& c, double r, int* i0, int* i1, int* j0, int* j1) {
-  double a0, a1, b0, b1;
-  if (v.perspective()) {
-    const double inv = 1.0 / c.z, k = r / (c.z * (c.z - r));
-    const double ha = k * std::sqrt(c.x * c.x + c.z * c.z), hb = k * std::sqrt(c.y * c.y + c.z * c.z);
-    a0 = c.x * inv - ha, a1 = c.x * inv + ha, b0 = c.y * inv - hb, b1 = c.y * inv + hb;
-  } else {
-    a0 = c.x - r, a1 = c.x + r, b0 = c.y - r, b1 = c.y + r;
+// Pixel-centre boxes (clamped to the image) that hold the silhouettes of a
+// chunk of spheres, cheaper than the exact conic: orthographic, the circle's
+// box; perspective, for a surface point c + r·n,
+// |x/z − cx/cz| = r·|nx·cz − nz·cx| / (cz·(cz + r·nz)) ≤ r·√(cx² + cz²) / (cz·(cz − r))
+// by Cauchy–Schwarz (and the same in y). state: 1 a box, 0 no pixel centre
+// of the image in it, -1 no finite bound or not wholly in front of the eye
+// (the caller takes the exact path).
+struct BoxChunk {
+  static constexpr uint32_t kSize = 256;
+  double cx[kSize], cy[kSize], cz[kSize];
+  int32_t i0[kSize], i1[kSize], j0[kSize], j1[kSize];
+  int32_t state[kSize];
+};
+
+template <bool kPerspective>
+void silhouette_boxes_t(const View& v, const SphereGrid& g, uint64_t e0, uint32_t m, BoxChunk* out) {
+  const glm::dvec3 eye = v.eye(), R = v.right(), U = v.up(), F = v.forward();
+  const double sx = v.scale_x(), sy = v.scale_y(), ox = v.offset_x(), oy = v.offset_y();
+  const double W = v.width(), H = v.height(), eps = 1e-6;
+  // The centres as plain doubles (x, y, z per entry): glm's member access
+  // keeps the compiler from vectorizing. The products and sums are
+  // to_camera's, in its order, so the camera-space centre is the same bits
+  // the renderer computes (the small-sphere test below relies on it).
+  static_assert(sizeof(glm::dvec3) == 3 * sizeof(double));
+  const double* centre = &g.centre[e0].x;
+  const double* radius = g.radius.data() + e0;
+  BoxChunk& b = *out;
+  for (size_t q = 0; q < m; ++q) {
+    const double dx = centre[3 * q] - eye.x, dy = centre[3 * q + 1] - eye.y, dz = centre[3 * q + 2] - eye.z;
+    const double cx = dx * R.x + dy * R.y + dz * R.z;
+    const double cy = dx * U.x + dy * U.y + dz * U.z;
+    const double cz = dx * F.x + dy * F.y + dz * F.z;
+    const double r = radius[q];
+    b.cx[q] = cx, b.cy[q] = cy, b.cz[q] = cz;
+    double a0, a1, b0, b1;
+    if constexpr (kPerspective) {
+      const double inv = 1.0 / cz, k = r / (cz * (cz - r));
+      const double ha = k * std::sqrt(cx * cx + cz * cz), hb = k * std::sqrt(cy * cy + cz * cz);
+      a0 = cx * inv - ha, a1 = cx * inv + ha, b0 = cy * inv - hb, b1 = cy * inv + hb;
+    } else {
+      a0 = cx - r, a1 = cx + r, b0 = cy - r, b1 = cy + r;
+    }
+    double X0 = sx * a0 + ox, X1 = sx * a1 + ox;
+    double Y0 = oy - sy * b1, Y1 = oy - sy * b0;
+    // Finite (NaN fails every comparison) and in front of the eye.
+    const bool ok = (cz - r > 0) & (std::fabs(X0) <= DBL_MAX) & (std::fabs(X1) <= DBL_MAX) &
+                    (std::fabs(Y0) <= DBL_MAX) & (std::fabs(Y1) <= DBL_MAX);
+    X0 = ok ? X0 : 0.0, X1 = ok ? X1 : 0.0, Y0 = ok ? Y0 : 0.0, Y1 = ok ? Y1 : 0.0;
+    // Widened for rounding, as the exact range is.
+    const double x0 = std::ceil(std::min(std::max(X0 - eps - 1e-9 * std::fabs(X0), -1.0), W));
+    const double x1 = std::floor(std::min(std::max(X1 + eps + 1e-9 * std::fabs(X1), -1.0), W));
+    const double y0 = std::ceil(std::min(std::max(Y0 - eps - 1e-9 * std::fabs(Y0), -1.0), H));
+    const double y1 = std::floor(std::min(std::max(Y1 + eps + 1e-9 * std::fabs(Y1), -1.0), H));
+    const int32_t i0 = int32_t(std::max(x0, 0.0)), i1 = int32_t(std::min(x1, W - 1));
+    const int32_t j0 = int32_t(std::max(y0, 0.0)), j1 = int32_t(std::min(y1, H - 1));
+    b.i0[q] = i0, b.i1[q] = i1, b.j0[q] = j0, b.j1[q] = j1;
+    b.state[q] = ok ? int32_t((i0 <= i1) & (j0 <= j1)) : -1;
   }
-  // Widened for rounding, as the exact range is.
-  const double X0 = v.scale_x() * a0 + v.offset_x(), X1 = v.scale_x() * a1 + v.offset_x();
-  const double Y0 = v.offset_y() - v.scale_y() * b1, Y1 = v.offset_y() - v.scale_y() * b0;
-  if (!(std::isfinite(X0) && std::isfinite(X1) && std::isfinite(Y0) && std::isfinite(Y1))) return -1;
-  const double eps = 1e-6;
-  const double W = v.width(), H = v.height();
-  const double x0 = std::ceil(std::clamp(X0 - eps - 1e-9 * std::fabs(X0), -1.0, W));
-  const double x1 = std::floor(std::clamp(X1 + eps + 1e-9 * std::fabs(X1), -1.0, W));
-  const double y0 = std::ceil(std::clamp(Y0 - eps - 1e-9 * std::fabs(Y0), -1.0, H));
-  const double y1 = std::floor(std::clamp(Y1 + eps + 1e-9 * std::fabs(Y1), -1.0, H));
-  *i0 = int(std::max(x0, 0.0)), *i1 = int(std::min(x1, W - 1));
-  *j0 = int(std::max(y0, 0.0)), *j1 = int(std::min(y1, H - 1));
-  return *i0 <= *i1 && *j0 <= *j1 ? 1 : 0;
+}
+
+void silhouette_boxes(const View& v, const SphereGrid& g, uint64_t e0, uint32_t m, BoxChunk* out) {
+  if (v.perspective())
+    silhouette_boxes_t<true>(v, g, e0, m, out);
+  else
+    silhouette_boxes_t<false>(v, g, e0, m, out);
 }
 
 }  // namespace
@@ -298,43 +343,74 @@ std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, c
     S.map_bytes = map->bytes();
   }
   std::vector<std::vector<uint32_t>> kept(survivors.size());
-  tbb::combinable<std::array<uint64_t, 2>> counts([] { return std::array<uint64_t, 2>{0, 0}; });
+  tbb::combinable<std::array<uint64_t, 3>> counts([] { return std::array<uint64_t, 3>{0, 0, 0}; });
+  tbb::enumerable_thread_specific<BoxChunk> chunk;
   tbb::task_arena arena(std::max(1, threads));
   arena.execute([&] {
     tbb::parallel_for(size_t(0), survivors.size(), [&](size_t q) {
       const uint32_t k = survivors[q];
-      std::array<uint64_t, 2>& n = counts.local();  // offscreen, pyramid-culled
-      for (uint64_t e = g.offset[k]; e < g.offset[k + 1]; ++e) {
-        int i0, i1, j0, j1;
-        if (map) {
-          // The pyramid first, on a cheap box that holds the silhouette:
-          // most spheres of a large set end here.
-          const glm::dvec3 c = to_camera(view, g.centre[e]);
-          const double znear = c.z - g.radius[e];
-          const int box = znear > 0 ? silhouette_box(view, c, g.radius[e], &i0, &i1, &j0, &j1) : -1;
-          if (box >= 0) {
-            if (box == 0) {
+      std::array<uint64_t, 3>& n = counts.local();  // offscreen, pyramid-culled, pixel-culled
+      for (uint64_t c0 = g.offset[k]; c0 < g.offset[k + 1]; c0 += BoxChunk::kSize) {
+        const uint32_t m = uint32_t(std::min<uint64_t>(BoxChunk::kSize, g.offset[k + 1] - c0));
+        // The pyramid first, on a cheap box that holds the silhouette: most
+        // spheres of a large set end here. The boxes of a chunk are set up
+        // in one branch-free loop (it vectorizes).
+        if (map) silhouette_boxes(view, g, c0, m, &chunk.local());
+        const BoxChunk& b = chunk.local();
+        for (uint32_t u = 0; u < m; ++u) {
+          const uint64_t e = c0 + u;
+          int i0, i1, j0, j1;
+          if (map && b.state[u] >= 0) {
+            if (b.state[u] == 0) {
               ++n[0];
               continue;
             }
-            if (map->hidden_pyramid(i0, i1, j0, j1, znear)) {
+            i0 = b.i0[u], i1 = b.i1[u], j0 = b.j0[u], j1 = b.j1[u];
+            const double cx = b.cx[u], cy = b.cy[u], cz = b.cz[u], R = g.radius[e];
+            if (map->hidden_pyramid(i0, i1, j0, j1, cz - R)) {
               ++n[1];
               continue;
             }
+            if ((i1 - i0 + 1) * (j1 - j0 + 1) <= kSmallSphereBox) {
+              // Small on screen (most spheres of a large set): each pixel
+              // centre of the box gets the renderer's own exact hit. No hit:
+              // the sphere draws nothing. Every hit behind the map there:
+              // it wins no pixel (the map is never nearer than the image's
+              // nearest surface). Either way nothing of it reaches the image.
+              const SphereSetup su = setup_sphere(cam, cx, cy, cz, R);
+              bool hit_any = false, seen = false;
+              for (int j = j0; j <= j1 && !seen; ++j)
+                for (int i = i0; i <= i1; ++i) {
+                  SphereHit h;
+                  if (!sphere_hit(su, double(i), double(j), &h)) continue;
+                  hit_any = true;
+                          if (!map->hidden_at(i, j, h.t)) {
+                    seen = true;
+                    break;
+                  }
+                }
+              if (!seen) {
+                ++n[hit_any ? 2 : 0];
+                continue;
+              }
+              kept[q].push_back(uint32_t(e));
+              continue;
+            }
           }
+          glm::dvec3 c;
+          if (!on_screen(e, &c, &i0, &i1, &j0, &j1)) {
+            ++n[0];
+            continue;
+          }
+          kept[q].push_back(uint32_t(e));
         }
-        glm::dvec3 c;
-        if (!on_screen(e, &c, &i0, &i1, &j0, &j1)) {
-          ++n[0];
-          continue;
-        }
-        kept[q].push_back(uint32_t(e));
       }
     });
   });
-  counts.combine_each([&](const std::array<uint64_t, 2>& n) {
+  counts.combine_each([&](const std::array<uint64_t, 3>& n) {
     S.spheres_offscreen += n[0];
     S.spheres_pyramid_culled += n[1];
+    S.spheres_pixel_culled += n[2];
   });
   size_t total = 0;
   for (const auto& v : kept) total += v.size();

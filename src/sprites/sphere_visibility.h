@@ -29,12 +29,17 @@ struct VisibilityStats {
   uint64_t spheres_view_culled = 0;      // in view-culled cells
   uint64_t spheres_occluded_cells = 0;   // in occluded cells
   uint64_t spheres_pyramid_culled = 0;   // dropped by the per-sphere test
-  uint64_t spheres_offscreen = 0;        // no pixel centre of the image in their silhouette's box
+  uint64_t spheres_pixel_culled = 0;     // small ones whose every exact hit lies behind the map
+  uint64_t spheres_offscreen = 0;        // no pixel centre of the image in their silhouette (or its box)
   uint64_t occluders = 0;                // discs drawn into the map
   uint64_t spheres_visible = 0;          // what the frame draws
   double ms_view = 0, ms_occlusion = 0, ms_pyramid = 0;
   uint64_t map_bytes = 0;
 };
+
+// Spheres whose pixel box holds at most this many pixel centres are tried
+// pixel by pixel instead of by rows (most spheres of a large set).
+constexpr int kSmallSphereBox = 16;
 
 // The screen mapping of a view, as the raster's sphere spans take it.
 CameraPlane camera_plane(const View& view);

@@ -302,6 +302,41 @@ TEST(SphereRenderer, PyramidTestUsesOneLevelOfAtMostTwoByTwo) {
   EXPECT_FALSE(part.hidden_pyramid(20, 24, 20, 24, 2.0));
 }
 
+// A sphere small on screen is tried at each pixel centre of its box: one whose
+// only hit lies behind the map is dropped even though its box reaches an
+// empty texel (where the pyramid test cannot drop it), and the image does
+// not change.
+TEST(SphereRenderer, SmallSphereHiddenAtItsEveryHitIsDropped) {
+  SphereRenderSettings rs = settings(Projection::Orthographic, 64, 64);
+  rs.camera.eye = {0, 0, 30};  // the occluder wholly in front of the eye plane
+  rs.camera.height = 64;  // one world unit per pixel
+  rs.grid = 1;
+  rs.threads = 1;
+  const View v(rs.camera, rs.width, rs.height);
+  // World point of pixel position (X, Y) at world depth z (camera looks down -z).
+  auto at = [&](double X, double Y, double z) {
+    return glm::dvec3((X - v.offset_x()) / v.scale_x() + v.eye().x, (v.offset_y() - Y) / v.scale_y() + v.eye().y, z);
+  };
+  SphereSet s;
+  // The occluder: its disc covers pixel (30, 32), not (31, 32). (Small
+  // enough for one map texel per pixel: occlusion_block.)
+  s.centres.push_back(at(23, 32, 0));
+  s.radii.push_back(7.5 / v.scale_x());
+  // Behind it, a sphere whose box holds pixels 30..31 x 32..33 but whose
+  // ray test hits (30, 32) only.
+  s.centres.push_back(at(30.3, 32.3, -5));
+  s.radii.push_back(0.72 / v.scale_x());
+  SphereRenderSettings off = rs;
+  off.culling = false;
+  const Rendered a = render(s, rs), b = render(s, off);
+  EXPECT_EQ(a.rgba.rgba, b.rgba.rgba);
+  EXPECT_EQ(0, std::memcmp(a.z.data(), b.z.data(), a.z.size() * 4));
+  EXPECT_EQ(a.stats.vis.spheres_pyramid_culled, 0u);
+  EXPECT_EQ(a.stats.vis.spheres_pixel_culled, 1u);
+  EXPECT_EQ(a.stats.vis.spheres_visible, 1u);
+  EXPECT_EQ(b.stats.vis.spheres_visible, 2u);
+}
+
 TEST(SphereRenderer, ShadedCentrePixelIsBlinnPhongHeadOn) {
   SphereSet s;
   s.centres = {{0, 0, 0}};
