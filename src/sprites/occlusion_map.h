@@ -38,24 +38,6 @@ class OcclusionMap {
   // minimum by an atomic compare-and-swap (so the map does not depend on the
   // order); without, plain stores (a row's loop vectorizes).
   void write_disc(double X, double Y, double rho, double z, bool shared = false);
-  // The same for a disc of radius rho < kSmall pixels (most discs of a large
-  // set), split so a caller can set up many at once in a vectorized loop:
-  // small_texel gives the one texel the disc can cover (the nearest pixel
-  // centre, when inside the disc and texels are pixels) or -1, and
-  // write_texel draws depth z there.
-  static constexpr double kSmall = 0.5;
-  static bool small_disc(double rho) { return rho * kShrink < kSmall; }
-  // The column of the texel (its row in *ty), or -1.
-  int32_t small_texel(double X, double Y, double rho, int32_t* ty) const {
-    const double r = rho * kShrink;
-    const double px = std::floor(X + 0.5), py = std::floor(Y + 0.5);
-    // Bitwise &: no branches, so a caller's loop over many discs vectorizes.
-    const bool in = (s_ == 1) & (px >= 0) & (py >= 0) & (px < double(tw_)) & (py < double(th_)) &
-                    ((px - X) * (px - X) + (py - Y) * (py - Y) <= r * r);
-    *ty = in ? int32_t(py) : 0;
-    return in ? int32_t(px) : -1;
-  }
-  void write_texel(uint32_t tx, uint32_t ty, double z, bool shared);
   // True when every texel over pixel-centre range [i0, i1] x [j0, j1] holds a
   // depth strictly nearer than z: anything whose surface lies at depth ≥ z
   // inside that box is hidden. Reads the map itself (used while it grows).
@@ -81,6 +63,23 @@ class OcclusionMap {
   uint64_t bytes() const;
 
  private:
+  // A disc of radius rho < kSmall pixels (most discs of a large set):
+  // small_texel gives the one texel it can cover (the nearest pixel centre,
+  // when inside the disc and texels are pixels) or -1, and write_texel
+  // draws depth z there.
+  static constexpr double kSmall = 0.5;
+  static bool small_disc(double rho) { return rho * kShrink < kSmall; }
+  // The column of the texel (its row in *ty), or -1.
+  int32_t small_texel(double X, double Y, double rho, int32_t* ty) const {
+    const double r = rho * kShrink;
+    const double px = std::floor(X + 0.5), py = std::floor(Y + 0.5);
+    // Bitwise &: no branches.
+    const bool in = (s_ == 1) & (px >= 0) & (py >= 0) & (px < double(tw_)) & (py < double(th_)) &
+                    ((px - X) * (px - X) + (py - Y) * (py - Y) <= r * r);
+    *ty = in ? int32_t(py) : 0;
+    return in ? int32_t(px) : -1;
+  }
+  void write_texel(uint32_t tx, uint32_t ty, double z, bool shared);
   // Discs are shrunk a little so a pixel centre on the rim (where the exact
   // surface meets the disc's depth) is never claimed.
   static constexpr double kShrink = 1 - 1e-6;

@@ -159,8 +159,8 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
                                             std::min<uint32_t>(1024, (side + block - 1) / block));
   OcclusionMap& map = **map_out;
   auto draw = [&](uint64_t q0, uint64_t q1, bool shared) {
-    // In chunks: the set-up loop has no branches the compiler cannot turn
-    // into selects (it vectorizes), the drawing loop reads it back from L1.
+    // In chunks: the set-up loop streams through the entries, the drawing
+    // loop reads its results back from L1.
     constexpr uint64_t kChunk = 512;
     double X[kChunk], Y[kChunk], rho[kChunk], z[kChunk];
     uint64_t m = 0;
@@ -255,7 +255,7 @@ void silhouette_boxes_t(const View& v, const SphereGrid& g, uint64_t e0, uint32_
   const double sx = v.scale_x(), sy = v.scale_y(), ox = v.offset_x(), oy = v.offset_y();
   const double W = v.width(), H = v.height(), eps = 1e-6;
   // The centres as plain doubles (x, y, z per entry): glm's member access
-  // keeps the compiler from vectorizing. The products and sums are
+  // gets in the compiler's way. The products and sums are
   // to_camera's, in its order, so the camera-space centre is the same bits
   // the renderer computes (the small-sphere test below relies on it).
   static_assert(sizeof(glm::dvec3) == 3 * sizeof(double));
@@ -354,7 +354,7 @@ std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, c
         const uint32_t m = uint32_t(std::min<uint64_t>(BoxChunk::kSize, g.offset[k + 1] - c0));
         // The pyramid first, on a cheap box that holds the silhouette: most
         // spheres of a large set end here. The boxes of a chunk are set up
-        // in one branch-free loop (it vectorizes).
+        // in one branch-free loop.
         if (map) silhouette_boxes(view, g, c0, m, &chunk.local());
         const BoxChunk& b = chunk.local();
         for (uint32_t u = 0; u < m; ++u) {
