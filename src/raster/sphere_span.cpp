@@ -157,6 +157,49 @@ bool sphere_pixel_range(const SphereSetup& s, const Viewport& vp, int* i0, int* 
          pixel_interval(ub.lo, ub.hi, s.cam.sy, s.cam.oy, true, vp.y0, vp.y1, j0, j1);
 }
 
+namespace {
+
+// Perspective: the nearest depth of the sphere on the plane x = a0·z (for y,
+// pass cy): the plane cuts it in a disk of radius ρ around c' = c − δ·n, and
+// the plane's steepest in-plane direction (a0, 0, 1)/L rises by 1/L in z.
+double plane_depth(double a0, double cx, double cz, double r) {
+  const double L = std::sqrt(1 + a0 * a0);
+  const double delta = (cx - a0 * cz) / L;
+  const double rho = std::sqrt(std::max(0.0, diff_sq(r, std::fabs(delta))));
+  return cz + delta * a0 / L - rho / L;
+}
+
+}  // namespace
+
+double sphere_depth_bound(const SphereSetup& s, double X0, double X1, double Y0, double Y1) {
+  if (!(s.cz - s.r > 0)) return -kInf;
+  double a0 = (X0 - s.cam.ox) * s.isx, a1 = (X1 - s.cam.ox) * s.isx;
+  double b0 = (s.cam.oy - Y1) * s.isy, b1 = (s.cam.oy - Y0) * s.isy;
+  if (a0 > a1) std::swap(a0, a1);
+  if (b0 > b1) std::swap(b0, b1);
+  double z;
+  if (!s.cam.perspective) {
+    // The block's nearest ray to the centre: depth cz − √(r² − d²).
+    const double da = std::max({a0 - s.cx, 0.0, s.cx - a1}), db = std::max({b0 - s.cy, 0.0, s.cy - b1});
+    z = s.cz - std::sqrt(std::max(0.0, s.r2 - da * da - db * db));
+  } else {
+    // The sphere's nearest point c − r·ẑ seen at (a*, b*). Inside the block:
+    // its depth. Otherwise the sphere's part inside the block's rays lies in
+    // each half-space of a side plane that separates (a*, b*) from the
+    // block, where (convexity) its nearest point is on that plane.
+    const double zn = s.cz - s.r, as = s.cx / zn, bs = s.cy / zn;
+    z = zn;
+    if (as < a0) z = std::max(z, plane_depth(a0, s.cx, s.cz, s.r));
+    if (as > a1) z = std::max(z, plane_depth(a1, s.cx, s.cz, s.r));
+    if (bs < b0) z = std::max(z, plane_depth(b0, s.cy, s.cz, s.r));
+    if (bs > b1) z = std::max(z, plane_depth(b1, s.cy, s.cz, s.r));
+  }
+  // Rounding: a near-tangent hit's depth carries about √ε of the sphere's
+  // size (the square root of a cancelled discriminant).
+  const double size = std::sqrt(s.cx * s.cx + s.cy * s.cy + s.cz * s.cz) + s.r;
+  return z - 1e-7 * size;
+}
+
 // Why one run per row: the hit set in the camera plane is convex. Orthographic
 // it is a disk. Perspective with the eye outside, it is {D >= 0, c·d > 0}, one
 // nappe of the tangent cone cut by the plane z = 1 (an ellipse's inside, or

@@ -87,6 +87,15 @@ inline bool sphere_hit(const SphereSetup& s, double X, double Y, SphereHit* h) {
 // pixel centre of `vp` can be hit.
 bool sphere_pixel_range(const SphereSetup& s, const Viewport& vp, int* i0, int* i1, int* j0, int* j1);
 
+// A lower bound of the depth sphere_hit() gives at any pixel centre (X, Y)
+// with X in [X0, X1] and Y in [Y0, Y1] where it hits, rounding included:
+// the nearest point of the sphere inside that block's rays (orthographic:
+// exact; perspective: the nearest point on the frustum's side planes that
+// separate the block from the sphere's nearest point). -inf when the sphere
+// is not wholly in front of the eye. Lets a renderer skip the exact hits of
+// pixels already nearer than the sphere can be there.
+double sphere_depth_bound(const SphereSetup& s, double X0, double X1, double Y0, double Y1);
+
 // Appends one run per row (out.push(y, x0, x1)) holding exactly the pixel
 // centres of `vp` for which sphere_hit() is true: each row's analytic
 // interval, each end then stepped to with sphere_hit() itself. Counters:

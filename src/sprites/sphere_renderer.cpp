@@ -32,6 +32,8 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 // A thread's scratch, reused from tile to tile.
 // Pixels per side of the blocks whose farthest depth a tile keeps.
 constexpr int kBlock = 8;
+// Bin entries fetched ahead of the one being drawn.
+constexpr uint64_t kPrefetch = 8;
 
 struct alignas(128) TileState {
   DepthBuffer depth;
@@ -40,6 +42,7 @@ struct alignas(128) TileState {
   // nearest depth lies behind every block under its box is skipped whole.
   std::vector<double> bmax;
   std::vector<uint8_t> bdirty;
+  std::vector<double> zlow;  // per block of the current sphere's box: its depth bound there (+inf: hidden)
   FaceSpans spans;
   std::vector<float> out;  // RGBA + Z per pixel
   SphereStats stats;       // this thread's per-tile counts
@@ -166,22 +169,26 @@ struct SphereRenderer::Impl {
   // Whether every block of the tile under pixel box [i0, i1] x [j0, j1] (tile
   // coordinates) is nearer than z everywhere.
   static bool blocks_nearer(TileState& ts, uint32_t w, uint32_t h, int i0, int i1, int j0, int j1, double z) {
-    const uint32_t bw = (w + kBlock - 1) / kBlock;
     for (int by = j0 / kBlock; by <= j1 / kBlock; ++by)
-      for (int bx = i0 / kBlock; bx <= i1 / kBlock; ++bx) {
-        const size_t b = size_t(by) * bw + size_t(bx);
-        if (ts.bdirty[b]) {
-          double m = -INFINITY;
-          const uint32_t y1 = std::min<uint32_t>(h, uint32_t(by + 1) * kBlock);
-          const uint32_t x1 = std::min<uint32_t>(w, uint32_t(bx + 1) * kBlock);
-          for (uint32_t y = uint32_t(by) * kBlock; y < y1; ++y)
-            for (uint32_t x = uint32_t(bx) * kBlock; x < x1; ++x) m = std::max(m, ts.depth.depth(size_t(y) * w + x));
-          ts.bmax[b] = m;
-          ts.bdirty[b] = 0;
-        }
-        if (!(ts.bmax[b] < z)) return false;
-      }
+      for (int bx = i0 / kBlock; bx <= i1 / kBlock; ++bx)
+        if (!(block_far(ts, w, h, bx, by) < z)) return false;
     return true;
+  }
+
+  // The farthest depth in block (bx, by) of the tile, recomputed when written since.
+  static double block_far(TileState& ts, uint32_t w, uint32_t h, int bx, int by) {
+    const uint32_t bw = (w + kBlock - 1) / kBlock;
+    const size_t b = size_t(by) * bw + size_t(bx);
+    if (ts.bdirty[b]) {
+      double m = -INFINITY;
+      const uint32_t y1 = std::min<uint32_t>(h, uint32_t(by + 1) * kBlock);
+      const uint32_t x1 = std::min<uint32_t>(w, uint32_t(bx + 1) * kBlock);
+      for (uint32_t y = uint32_t(by) * kBlock; y < y1; ++y)
+        for (uint32_t x = uint32_t(bx) * kBlock; x < x1; ++x) m = std::max(m, ts.depth.depth(size_t(y) * w + x));
+      ts.bmax[b] = m;
+      ts.bdirty[b] = 0;
+    }
+    return ts.bmax[b];
   }
 
   // A sphere wrote into these pixels: their blocks' farthest depths may have moved.
@@ -201,7 +208,17 @@ struct SphereRenderer::Impl {
     ts.bdirty.assign(nb, 0);
     const uint32_t bw = (w + kBlock - 1) / kBlock;
     const Viewport vp{int(r.x0), int(r.y0), int(r.x1), int(r.y1)};
-    for (uint64_t e = bin_offset[t]; e < bin_offset[t + 1]; ++e) {
+    const uint64_t e_end = bin_offset[t + 1];
+    for (uint64_t e = bin_offset[t]; e < e_end; ++e) {
+      // Bins are in depth order, so the entries are scattered in memory:
+      // fetch a few ahead (most spheres end in a cheap test, and the loop
+      // would otherwise wait on every centre).
+      if (e + kPrefetch < e_end) {
+        const uint32_t ahead = bin_ids[e + kPrefetch];
+        __builtin_prefetch(&g.centre[ahead]);
+        __builtin_prefetch(&g.radius[ahead]);
+        __builtin_prefetch(&g.ids[ahead]);
+      }
       const uint32_t entry = bin_ids[e], id = g.ids[entry];
       const glm::dvec3 c = to_camera(view, g.centre[entry]);
       const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, g.radius[entry]);
@@ -238,22 +255,62 @@ struct SphereRenderer::Impl {
         if (S.depth_writes != writes_before) mark_blocks(ts, bw, i0, i1, j0, j1);
         continue;
       }
+      // Per 8×8 block of its box, the nearest the sphere can be there
+      // (sphere_depth_bound): a pixel already nearer skips its exact hit,
+      // a block nearer everywhere is skipped whole. A large sphere's nearest
+      // depth is far in front of most of its surface, so this rejects much
+      // more than z_reject alone where spheres nest.
+      const int bx0 = i0 / kBlock, by0 = j0 / kBlock, nbx = i1 / kBlock - bx0 + 1, nby = j1 / kBlock - by0 + 1;
+      ts.zlow.resize(size_t(nbx) * size_t(nby));
+      int row0 = nby, row1 = -1;  // the block rows not hidden whole
+      for (int by = 0; by < nby; ++by)
+        for (int bx = 0; bx < nbx; ++bx) {
+          const int px = (bx0 + bx) * kBlock, py = (by0 + by) * kBlock;
+          const double X0 = px + vp.x0, X1 = std::min<int>(px + kBlock, int(w)) - 1 + vp.x0;
+          const double Y0 = py + vp.y0, Y1 = std::min<int>(py + kBlock, int(h)) - 1 + vp.y0;
+          const double zl = std::max(z_reject, sphere_depth_bound(su, X0, X1, Y0, Y1));
+          const bool hidden = block_far(ts, w, h, bx0 + bx, by0 + by) < zl;
+          ts.zlow[size_t(by) * nbx + bx] = hidden ? INFINITY : zl;
+          if (!hidden) row0 = std::min(row0, by), row1 = by;
+        }
+      if (row1 < 0) {
+        ++S.spheres_block_rejected;
+        --S.spheres_scanned;
+        continue;
+      }
+      // Only the rows of those block rows are scanned (a run never leaves
+      // its row, so the others could only give rejected pixels).
+      const Viewport rows{vp.x0, vp.y0 + (by0 + row0) * kBlock, vp.x1,
+                          std::min(vp.y1, vp.y0 + (by0 + row1 + 1) * kBlock)};
       ts.spans.clear();
       ScanCounters sc;
-      scan_sphere(su, vp, ts.spans, sc);
+      scan_sphere(su, rows, ts.spans, sc);
       S.pixel_tests += sc.pixel_tests;
       for (const RowSpan& row : ts.spans.rows) {
-        const size_t base = size_t(row.y - vp.y0) * w - size_t(vp.x0);
-        for (int32_t i = row.x0; i <= row.x1; ++i) {
-          const size_t p = base + size_t(i);
-          if (ts.depth.depth(p) < z_reject) {
-            ++S.early_rejected;
+        const int y = row.y - vp.y0;
+        const size_t base = size_t(y) * w;
+        const double* zrow = ts.zlow.data() + size_t(y / kBlock - by0) * nbx;
+        // By block segments of the run (a run may step past the box: there,
+        // the sphere's nearest depth only).
+        for (int x = row.x0 - vp.x0, xe = row.x1 - vp.x0; x <= xe;) {
+          const int b = x / kBlock - bx0, end = std::min(xe, (x / kBlock + 1) * kBlock - 1);
+          const double zl = b >= 0 && b < nbx ? zrow[b] : z_reject;
+          if (zl == INFINITY) {
+            S.early_rejected += uint64_t(end - x + 1);
+            x = end + 1;
             continue;
           }
-          SphereHit hit;
-          if (!sphere_hit(su, double(i), double(row.y), &hit)) continue;
-          ++S.fragments;
-          if (ts.depth.test_write(p, hit.t, id)) ++S.depth_writes;
+          for (; x <= end; ++x) {
+            const size_t p = base + size_t(x);
+            if (ts.depth.depth(p) < zl) {
+              ++S.early_rejected;
+              continue;
+            }
+            SphereHit hit;
+            if (!sphere_hit(su, double(x + vp.x0), double(row.y), &hit)) continue;
+            ++S.fragments;
+            if (ts.depth.test_write(p, hit.t, id)) ++S.depth_writes;
+          }
         }
       }
       if (S.depth_writes != writes_before) mark_blocks(ts, bw, i0, i1, j0, j1);

@@ -112,6 +112,29 @@ bool box_screen_range(const View& v, const glm::dvec3& lo, const glm::dvec3& hi,
 
 // Steps 1 and 2: view-volume culling, then occlusion culling cells nearest
 // first, drawing each surviving cell's discs into `map`.
+// The centre discs of entries [e0, e0 + n): screen centre (X, Y), radius rho
+// in pixels (0: not an occluder, the sphere is not wholly in front of the
+// eye) and depth z. Camera-space centres as in silhouette_boxes_t.
+template <bool kPerspective>
+void disc_setup(const View& v, const SphereGrid& g, uint64_t e0, uint64_t n, double* __restrict X,
+                double* __restrict Y, double* __restrict rho, double* __restrict z) {
+  const glm::dvec3 eye = v.eye(), R = v.right(), U = v.up(), F = v.forward();
+  const double sx = v.scale_x(), sy = v.scale_y(), ox = v.offset_x(), oy = v.offset_y();
+  const double* __restrict centre = &g.centre[e0].x;
+  const double* __restrict radius = g.radius.data() + e0;
+  for (size_t q = 0; q < n; ++q) {
+    const double dx = centre[3 * q] - eye.x, dy = centre[3 * q + 1] - eye.y, dz = centre[3 * q + 2] - eye.z;
+    const double cx = dx * R.x + dy * R.y + dz * R.z;
+    const double cy = dx * U.x + dy * U.y + dz * U.z;
+    const double cz = dx * F.x + dy * F.y + dz * F.z;
+    const double inv = kPerspective ? 1.0 / cz : 1.0;
+    X[q] = sx * cx * inv + ox;
+    Y[q] = oy - sy * cy * inv;
+    rho[q] = cz - radius[q] > 0 ? sx * radius[q] * inv : 0.0;
+    z[q] = cz;
+  }
+}
+
 void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<OcclusionMap>* map_out,
                 std::vector<uint32_t>* survivors, VisibilityStats* st, int threads) {
   VisibilityStats& S = *st;
@@ -164,24 +187,12 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
     constexpr uint64_t kChunk = 512;
     double X[kChunk], Y[kChunk], rho[kChunk], z[kChunk];
     uint64_t m = 0;
-    const bool persp = view.perspective();
-    const glm::dvec3 eye = view.eye(), Rt = view.right(), Up = view.up(), Fw = view.forward();
-    const double sx = view.scale_x(), sy = view.scale_y(), ox = view.offset_x(), oy = view.offset_y();
     for (uint64_t c0 = q0; c0 < q1; c0 += kChunk) {
       const uint64_t n = std::min(kChunk, q1 - c0);
-      const double* centre = &g.centre[c0].x;  // plain doubles: see silhouette_boxes_t
-      for (uint64_t q = 0; q < n; ++q) {
-        const double dx = centre[3 * q] - eye.x, dy = centre[3 * q + 1] - eye.y, dz = centre[3 * q + 2] - eye.z;
-        const double cx = dx * Rt.x + dy * Rt.y + dz * Rt.z;
-        const double cy = dx * Up.x + dy * Up.y + dz * Up.z;
-        const double cz = dx * Fw.x + dy * Fw.y + dz * Fw.z;
-        const double R = g.radius[c0 + q];
-        const double inv = persp ? 1.0 / cz : 1.0;
-        X[q] = sx * cx * inv + ox;
-        Y[q] = oy - sy * cy * inv;
-        rho[q] = cz - R > 0 ? sx * R * inv : 0.0;  // 0: not an occluder
-        z[q] = cz;
-      }
+      if (view.perspective())
+        disc_setup<true>(view, g, c0, n, X, Y, rho, z);
+      else
+        disc_setup<false>(view, g, c0, n, X, Y, rho, z);
       for (uint64_t q = 0; q < n; ++q)
         if (rho[q] > 0) {
           map.write_disc(X[q], Y[q], rho[q], z[q], shared);

@@ -184,6 +184,49 @@ TEST(SphereSpan, ScanEqualsBruteForce) {
   EXPECT_EQ(spheres, 2u * 12 * 8 * 6);
 }
 
+// The block depth bound: no hit in a block is nearer, and it is tighter than
+// the sphere's nearest depth for blocks away from that point.
+TEST(SphereSpan, DepthBoundHoldsForEveryHitOfItsBlock) {
+  std::mt19937 rng(4242);
+  uint64_t hits = 0, blocks = 0, tighter = 0;
+  for (int proj = 0; proj < 2; ++proj)
+    for (int rep = 0; rep < 12; ++rep) {
+      const Scene sc = random_scene(rng, proj == 1);
+      for (int kind = 0; kind < 8; ++kind)
+        for (int k = 0; k < 6; ++k) {
+          const Ball b = random_ball(rng, sc, kind);
+          const SphereSetup s = setup_sphere(sc.cam, b.x, b.y, b.z, b.r);
+          const double zn = b.z - b.r;
+          for (int q = 0; q < 8; ++q) {
+            const int size = 1 + int(rng() % 16);
+            const int x0 = int(rng() % uint32_t(sc.W)), y0 = int(rng() % uint32_t(sc.H));
+            const int x1 = std::min(sc.W - 1, x0 + size - 1), y1 = std::min(sc.H - 1, y0 + size - 1);
+            const double bound = sphere_depth_bound(s, x0, x1, y0, y1);
+            if (!(zn > 0)) {
+              EXPECT_EQ(bound, -INFINITY);
+              continue;
+            }
+            ++blocks;
+            EXPECT_GE(bound, zn - 1e-6 * (std::fabs(b.z) + b.r));
+            bool any = false;
+            for (int j = y0; j <= y1; ++j)
+              for (int i = x0; i <= x1; ++i) {
+                SphereHit h;
+                if (!sphere_hit(s, i, j, &h)) continue;
+                any = true;
+                ++hits;
+                EXPECT_GE(h.t, bound) << "pixel " << i << "," << j << " block " << x0 << ".." << x1 << " x " << y0
+                                      << ".." << y1;
+              }
+            tighter += any && bound > zn + 1e-3 * b.r;
+            if (HasFatalFailure()) return;
+          }
+        }
+    }
+  EXPECT_GT(hits, 10000u);
+  EXPECT_GT(tighter, blocks / 20);
+}
+
 // Depths and hit classification against the long-double ray tracer.
 TEST(SphereSpan, HitMatchesLongDoubleRayTracer) {
   std::mt19937 rng(777);
