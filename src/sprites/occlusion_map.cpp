@@ -119,6 +119,32 @@ void OcclusionMap::write_disc(double X, double Y, double rho, double z, bool sha
   }
 }
 
+uint64_t OcclusionMap::write_discs(const double* X, const double* Y, const double* rho, const double* z, size_t n,
+                                   bool shared) {
+  // Per small disc, the pixel centre it covers ((-1, -1): none), as
+  // small_texel, in a branch-free loop; the rest go through write_disc.
+  double px[kBatch], py[kBatch];
+  const double tw = tw_, th = th_, one = s_ == 1 ? 1.0 : 0.0;
+  for (size_t q = 0; q < n; ++q) {
+    const double r = rho[q] * kShrink;
+    const double x = std::floor(X[q] + 0.5), y = std::floor(Y[q] + 0.5);
+    const bool in = (one == 1.0) & (r > 0) & (x >= 0) & (y >= 0) & (x < tw) & (y < th) &
+                    ((x - X[q]) * (x - X[q]) + (y - Y[q]) * (y - Y[q]) <= r * r);
+    px[q] = in ? x : -1.0;
+    py[q] = in ? y : -1.0;
+  }
+  uint64_t drawn = 0;
+  for (size_t q = 0; q < n; ++q) {
+    if (!(rho[q] > 0)) continue;
+    ++drawn;
+    if (!small_disc(rho[q]))
+      write_disc(X[q], Y[q], rho[q], z[q], shared);
+    else if (px[q] >= 0 && z[q] > 0)
+      write_texel(uint32_t(px[q]), uint32_t(py[q]), z[q], shared);
+  }
+  return drawn;
+}
+
 bool OcclusionMap::hidden(int i0, int i1, int j0, int j1, double z) const {
   i0 = std::max(i0, 0), j0 = std::max(j0, 0);
   i1 = std::min(i1, int(w_) - 1), j1 = std::min(j1, int(h_) - 1);

@@ -38,6 +38,11 @@ class OcclusionMap {
   // minimum by an atomic compare-and-swap (so the map does not depend on the
   // order); without, plain stores (a row's loop vectorizes).
   void write_disc(double X, double Y, double rho, double z, bool shared = false);
+  // The same for n ≤ kBatch discs (rho ≤ 0: none); returns how many were
+  // drawn. The small discs' texels are found in one vectorized loop.
+  static constexpr size_t kBatch = 512;
+  uint64_t write_discs(const double* X, const double* Y, const double* rho, const double* z, size_t n,
+                       bool shared = false);
   // True when every texel over pixel-centre range [i0, i1] x [j0, j1] holds a
   // depth strictly nearer than z: anything whose surface lies at depth ≥ z
   // inside that box is hidden. Reads the map itself (used while it grows).

@@ -32,6 +32,8 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 // A thread's scratch, reused from tile to tile.
 // Pixels per side of the blocks whose farthest depth a tile keeps.
 constexpr int kBlock = 8;
+// Spheres whose box spans at least this many blocks get per-block depth bounds.
+constexpr int kBoundBlocks = 4;
 // Bin entries fetched ahead of the one being drawn.
 constexpr uint64_t kPrefetch = 8;
 
@@ -263,7 +265,13 @@ struct SphereRenderer::Impl {
       const int bx0 = i0 / kBlock, by0 = j0 / kBlock, nbx = i1 / kBlock - bx0 + 1, nby = j1 / kBlock - by0 + 1;
       ts.zlow.resize(size_t(nbx) * size_t(nby));
       int row0 = nby, row1 = -1;  // the block rows not hidden whole
-      for (int by = 0; by < nby; ++by)
+      if (nbx * nby < kBoundBlocks) {
+        // Spanning few blocks: the bounds would gain little over z_reject
+        // (already tested against every block above).
+        std::fill(ts.zlow.begin(), ts.zlow.end(), z_reject);
+        row0 = 0, row1 = nby - 1;
+      }
+      for (int by = 0; by < nby && nbx * nby >= kBoundBlocks; ++by)
         for (int bx = 0; bx < nbx; ++bx) {
           const int px = (bx0 + bx) * kBlock, py = (by0 + by) * kBlock;
           const double X0 = px + vp.x0, X1 = std::min<int>(px + kBlock, int(w)) - 1 + vp.x0;

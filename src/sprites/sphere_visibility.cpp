@@ -184,7 +184,7 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
   auto draw = [&](uint64_t q0, uint64_t q1, bool shared) {
     // In chunks: the set-up loop streams through the entries, the drawing
     // loop reads its results back from L1.
-    constexpr uint64_t kChunk = 512;
+    constexpr uint64_t kChunk = OcclusionMap::kBatch;
     double X[kChunk], Y[kChunk], rho[kChunk], z[kChunk];
     uint64_t m = 0;
     for (uint64_t c0 = q0; c0 < q1; c0 += kChunk) {
@@ -193,11 +193,7 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
         disc_setup<true>(view, g, c0, n, X, Y, rho, z);
       else
         disc_setup<false>(view, g, c0, n, X, Y, rho, z);
-      for (uint64_t q = 0; q < n; ++q)
-        if (rho[q] > 0) {
-          map.write_disc(X[q], Y[q], rho[q], z[q], shared);
-          ++m;
-        }
+      m += map.write_discs(X, Y, rho, z, n, shared);
     }
     return m;
   };
