@@ -52,9 +52,6 @@ void reference_spheres(SceneInput& in, const std::string& out, const std::string
   if (!stats.empty()) AtomicFile(stats).check_writable();
   const RenderSettings& rs = in.scene.settings;
   const SphereScene& sp = in.scene.spheres;
-  if (sp.mode != SphereMode::Opaque)
-    throw std::runtime_error(std::string("render.mode \"") + to_string(sp.mode) +
-                             "\": the reference traces opaque scenes only today");
   const SphereColorMode mode = sp.has_color_mode ? sp.color : default_color_mode(in.spheres);
   std::vector<glm::vec4> colors;
   try {
@@ -63,7 +60,13 @@ void reference_spheres(SceneInput& in, const std::string& out, const std::string
     throw std::runtime_error(sp.path + ": " + e.what());
   }
   const View view(rs.camera, rs.width, rs.height);
-  const SphereReferenceImage img = render_sphere_reference(in.spheres, colors, sp.shading, view, rs.background, threads);
+  // Translucent modes: every crossing composited in order, exactly (no
+  // tolerance, no layer cap): what each mode approximates.
+  const SphereReferenceImage img =
+      sp.mode == SphereMode::Opaque
+          ? render_sphere_reference(in.spheres, colors, sp.shading, view, rs.background, threads)
+          : render_sphere_reference_translucent(in.spheres, colors, sp.shading, view, rs.background, threads,
+                                                sp.front_surfaces_only);
   write_rgba_z(out, img.rgba, img.z);
   if (!stats.empty()) {
     nlohmann::json j = {{"time_ms", {{"build", img.ms_build}, {"trace", img.ms_trace}, {"total", img.ms_build + img.ms_trace}}},

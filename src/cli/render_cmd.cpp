@@ -192,6 +192,22 @@ void write_sphere_stats(const std::string& path, const SphereStats& S, const Sce
       {"peak_rss_bytes", S.peak_rss_bytes},
       {"memory_budget_bytes", S.memory_budget_bytes},
   };
+  if (in.scene.spheres.mode != SphereMode::Opaque) {
+    const SphereScene& sp = in.scene.spheres;
+    j["translucency"] = {
+        {"surfaces", sp.front_surfaces_only ? "front" : "both"},
+        {"tolerance", sp.tolerance},
+        {"max_layers", sp.max_layers},
+        {"fragments_composited", S.composited},
+        {"pixels_stopped", S.pixels_stopped},
+        {"spheres_clear", S.spheres_clear},
+        {"flushes", S.flushes},
+        {"pending_peak", S.pending_peak},
+        {"passes", S.passes},
+        {"layers_max", S.layers_max},
+        {"layers_mean", S.layer_pixels ? double(S.layer_sum) / double(S.layer_pixels) : 0.0},
+    };
+  }
   if (frame_ms.size() > 1) j["frame_ms"] = frame_ms;
   write_json_file(path, j);
 }

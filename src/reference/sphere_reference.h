@@ -87,4 +87,16 @@ SphereReferenceImage render_sphere_reference(const SphereSet& spheres, const std
                                              const Shading& shading, const View& view, const double background[4],
                                              int threads);
 
+// Translucent scenes: every crossing of the ray (with `front_only`, each
+// sphere's first one: its visible surface), in depth order, composited front
+// to back (premultiplied, colour shaded at the crossing with the normal
+// facing the viewer, the sphere's alpha; alpha 0 adds nothing, an alpha-1
+// sphere ends the ray) over `background`; no early stop, no layer cap. Z:
+// the nearest crossing of a sphere with alpha > 0. The exact answer the
+// translucent modes are measured against.
+SphereReferenceImage render_sphere_reference_translucent(const SphereSet& spheres,
+                                                         const std::vector<glm::vec4>& colors, const Shading& shading,
+                                                         const View& view, const double background[4], int threads,
+                                                         bool front_only);
+
 }  // namespace zs

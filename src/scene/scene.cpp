@@ -343,6 +343,9 @@ SphereRenderSettings sphere_render_settings(const RenderSettings& common, const 
   r.camera = common.camera;
   r.shading = sp.shading;
   r.mode = sp.mode;
+  r.front_surfaces_only = sp.front_surfaces_only;
+  r.tolerance = sp.tolerance;
+  r.max_layers = sp.max_layers;
   r.grid = sp.grid;
   r.culling = sp.culling;
   r.threads = common.threads;

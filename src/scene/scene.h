@@ -25,9 +25,9 @@ struct SphereScene {
   SphereColorMode color = SphereColorMode::Element;
   Shading shading;
   SphereMode mode = SphereMode::Opaque;
-  bool front_surfaces_only = false;  // render.surfaces: "front" (translucency; reserved)
-  double tolerance = 8;              // render.tolerance (translucency; reserved)
-  uint32_t max_layers = 32;          // render.max_layers (translucency; reserved)
+  bool front_surfaces_only = false;  // render.surfaces: "front"
+  double tolerance = 8;              // render.tolerance
+  uint32_t max_layers = 32;          // render.max_layers
   uint32_t grid = 0;  // render.grid; 0: "auto"
   bool culling = true;
 };

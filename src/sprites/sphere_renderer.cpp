@@ -17,6 +17,7 @@
 #include "raster/sphere_span.h"
 #include "raster/tile_loop.h"
 #include "spheres/sphere_shading.h"
+#include "sprites/translucent_tile.h"
 #include "util/bytes_str.h"
 #include "util/memory.h"
 #include "util/progress.h"
@@ -48,6 +49,7 @@ struct alignas(128) TileState {
   FaceSpans spans;
   std::vector<float> out;  // RGBA + Z per pixel
   SphereStats stats;       // this thread's per-tile counts
+  std::unique_ptr<TranslucentTile> translucent;  // the translucent modes' scratch
 };
 
 // Per-pixel bytes of a tile in flight: depth and id, output.
@@ -72,15 +74,13 @@ struct SphereRenderer::Impl {
   std::vector<uint64_t> bin_offset;  // tiles + 1
   std::vector<uint32_t> bin_ids;     // grid entries per tile, front-to-back cell order
   tbb::enumerable_thread_specific<TileState> states;
+  uint64_t pool_limit = 0;
 
   Impl(const SphereSet& spheres, const std::vector<glm::vec4>& c, const SphereGrid& grid_, const SphereRenderSettings& settings,
        uint64_t extra_bytes)
       : s(spheres), colors(c), g(grid_), rs(settings), view(settings.camera, settings.width, settings.height),
         cam(camera_plane(view)) {
     const auto t_start = Clock::now();
-    if (rs.mode != SphereMode::Opaque)
-      throw std::runtime_error(std::string("render.mode \"") + to_string(rs.mode) +
-                               "\" is not built yet; only \"opaque\" renders today");
     if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
     if (rs.tile_size < 1) throw std::runtime_error("tile size must be at least 1 pixel");
     if (colors.size() != s.size()) throw std::runtime_error("one colour per sphere is needed");
@@ -106,8 +106,25 @@ struct SphereRenderer::Impl {
     };
     check(shared + s.size() * 4);
 
+    // Translucent modes: only opaque spheres hide others (culling stays
+    // lossless), and each thread may hold pending fragments (sorted).
+    std::vector<uint8_t> occluder;
+    if (rs.mode != SphereMode::Opaque) {
+      occluder.resize(g.ids.size());
+      for (size_t e = 0; e < g.ids.size(); ++e) occluder[e] = colors[g.ids[e]].a >= 1.f;
+      shared += occluder.size() + uint64_t(threads) * uint64_t(rs.tile_size) * rs.tile_size * 160;
+      check(shared);
+    }
     const auto t_vis = Clock::now();
-    std::vector<uint32_t> visible = visible_spheres(s, g, view, rs.culling, &S.vis, threads);
+    std::vector<uint32_t> visible = visible_spheres(s, g, view, rs.culling, &S.vis, threads,
+                                                    occluder.empty() ? nullptr : &occluder);
+    occluder = {};
+    if (rs.mode != SphereMode::Opaque) {  // alpha 0 draws nothing in a translucent mode
+      const size_t before = visible.size();
+      visible.erase(std::remove_if(visible.begin(), visible.end(), [&](uint32_t e) { return !(colors[g.ids[e]].a > 0.f); }),
+                    visible.end());
+      S.spheres_clear = before - visible.size();
+    }
     S.ms_visibility = ms_since(t_vis);
     shared += visible.size() * 4 + S.vis.map_bytes;
 
@@ -165,6 +182,8 @@ struct SphereRenderer::Impl {
         for (uint32_t c = b.c0; c <= b.c1; ++c) bin_ids[next[uint64_t(r) * cols + c]++] = visible[q];
     }
     S.ms_binning = ms_since(t_bin);
+    // The rest of the budget is the pending fragments' (two pools per thread).
+    pool_limit = budget > shared ? (budget - shared) / threads / (2 * TranslucentTile::kFragBytes) : 0;
     S.ms_setup = ms_since(t_start);
   }
 
@@ -203,6 +222,11 @@ struct SphereRenderer::Impl {
   const float* render_tile(uint32_t t, const TileRect& r) {
     TileState& ts = states.local();
     SphereStats& S = ts.stats;
+    if (rs.mode != SphereMode::Opaque) {
+      if (!ts.translucent) ts.translucent = std::make_unique<TranslucentTile>();
+      const TranslucentFrame f{&s, &g, &colors, &rs, &view, cam, pool_limit};
+      return ts.translucent->render(f, bin_ids.data() + bin_offset[t], bin_offset[t + 1] - bin_offset[t], r, S);
+    }
     const uint32_t w = r.width(), h = r.height();
     ts.depth.reset(w, h, 1);
     const uint32_t nb = ((w + kBlock - 1) / kBlock) * ((h + kBlock - 1) / kBlock);

@@ -1,5 +1,6 @@
-// The sphere-sprite renderer (digest §2.1–2.2), opaque: every sphere is an
-// exact impostor. Its silhouette is scanned as one exact conic span per row
+// The sphere-sprite renderer (digest §2.1–2.2): every sphere is an exact
+// impostor. Opaque here; the translucent modes resolve tiles with
+// translucent_tile.h on the same visibility and bins. Its silhouette is scanned as one exact conic span per row
 // (raster/sphere_span.h); each covered pixel's depth is the exact entry of
 // the pixel's ray into the sphere (its exit when the eye is inside), so
 // interpenetrating spheres meet on their true intersection curve in both
@@ -34,8 +35,7 @@ class SphereRenderer : public TiledRenderer {
   // from `spheres` with settings.grid cells per axis (kept by the caller
   // across frames: the data are static). `extra_bytes`: what the caller holds
   // besides (the set, its sink), counted against the memory budget. Throws
-  // std::runtime_error when the budget cannot hold the render, or for a mode
-  // other than opaque.
+  // std::runtime_error when the budget cannot hold the render.
   SphereRenderer(const SphereSet& spheres, const std::vector<glm::vec4>& colors, const SphereGrid& grid,
                  const SphereRenderSettings& settings, uint64_t extra_bytes = 0);
   ~SphereRenderer() override;

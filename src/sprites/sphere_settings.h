@@ -11,8 +11,10 @@
 
 namespace zs {
 
-// How fragments are resolved. Only Opaque is built; the others are the
-// translucency modes the scene contract reserves.
+// How fragments are resolved (docs/spheres.md): the nearest surface wins
+// (Opaque), or every surface is composited front to back with the sphere's
+// alpha — exactly (Sorted), by the seed's depth peeling (Peel, DualPeel) or
+// by Meshkin's order-independent weighted sum (Weighted).
 enum class SphereMode { Opaque, Sorted, Peel, DualPeel, Weighted };
 const char* to_string(SphereMode m);
 bool parse_sphere_mode(const std::string& s, SphereMode* out);
@@ -23,6 +25,13 @@ struct SphereRenderSettings {
   Camera camera;
   Shading shading;
   SphereMode mode = SphereMode::Opaque;
+  // Translucent modes: one fragment per sphere and ray (the visible surface)
+  // instead of two (entry and exit); the incomplete-image stop once
+  // 1 − alpha <= tolerance / 510 (0: never; digest Eq. 4.2); the layer cap
+  // of peel and dual_peel (0: none).
+  bool front_surfaces_only = false;
+  double tolerance = 8;
+  uint32_t max_layers = 32;
   // Visibility (docs/spheres.md): a grid³ cell grid, view-volume culling of
   // its cells, front-to-back occlusion culling of cells against the
   // conservative centre-disc depth map, and the one-level max-depth pyramid

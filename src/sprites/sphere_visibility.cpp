@@ -136,7 +136,8 @@ void disc_setup(const View& v, const SphereGrid& g, uint64_t e0, uint64_t n, dou
 }
 
 void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<OcclusionMap>* map_out,
-                std::vector<uint32_t>* survivors, VisibilityStats* st, int threads) {
+                std::vector<uint32_t>* survivors, VisibilityStats* st, int threads,
+                const std::vector<uint8_t>* occluder) {
   VisibilityStats& S = *st;
   tbb::task_arena arena(std::max(1, threads));
   // 1. View-volume culling of the cells.
@@ -193,6 +194,8 @@ void cull_cells(const SphereGrid& g, const View& view, std::unique_ptr<Occlusion
         disc_setup<true>(view, g, c0, n, X, Y, rho, z);
       else
         disc_setup<false>(view, g, c0, n, X, Y, rho, z);
+      if (occluder)  // a translucent sphere hides nothing: no disc
+        for (uint64_t q = 0; q < n; ++q) rho[q] = (*occluder)[c0 + q] ? rho[q] : 0.0;
       m += map.write_discs(X, Y, rho, z, n, shared);
     }
     return m;
@@ -319,7 +322,7 @@ CameraPlane camera_plane(const View& v) {
 }
 
 std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, const View& view, bool culling,
-                                      VisibilityStats* st, int threads) {
+                                      VisibilityStats* st, int threads, const std::vector<uint8_t>* occluder) {
   VisibilityStats local;
   VisibilityStats& S = st ? *st : local;
   S = {};
@@ -339,7 +342,7 @@ std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, c
     for (uint32_t k = 0; k < g.cells(); ++k)
       if (g.count(k) > 0) survivors.push_back(k);
   } else {
-    cull_cells(g, view, &map, &survivors, &S, threads);
+    cull_cells(g, view, &map, &survivors, &S, threads, occluder);
   }
 
   // 3. The pyramid test per sphere of the surviving cells, cells in parallel;

@@ -53,8 +53,11 @@ inline glm::dvec3 to_camera(const View& v, const glm::dvec3& p) {
 // The spheres to draw, as entries of the grid (indices into g.ids, g.centre,
 // g.radius), cells nearest first. With culling off: every drawable sphere with
 // a pixel centre in its silhouette's box.
-// The per-sphere tests run on `threads` threads.
+// The per-sphere tests run on `threads` threads. `occluder` (per grid entry;
+// null: every sphere): which spheres' discs may hide others — in the
+// translucent modes only opaque ones do.
 std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, const View& view, bool culling,
-                                      VisibilityStats* stats, int threads = 1);
+                                      VisibilityStats* stats, int threads = 1,
+                                      const std::vector<uint8_t>* occluder = nullptr);
 
 }  // namespace zs

@@ -65,6 +65,21 @@ grep -q '"renderer": "spheres"' "$tmp/s1.json" && grep -q '"spheres_visible": 4'
   || { echo "FAIL stats: $(cat "$tmp/s1.json")"; fail=1; }
 "$zsweep" render "$tmp/scene.json" -o "$tmp/s.png" >/dev/null && [[ -s "$tmp/s.png" ]] || { echo "FAIL png"; fail=1; }
 
+# Translucent modes on the same scene (two spheres of alpha 0.5 among
+# opaque ones): sorted with no tolerance is the reference's exact composite,
+# peel to completion is sorted bit for bit, threads and tiles change nothing.
+for m in sorted peel dual_peel weighted; do
+  sed "s/\"mode\": \"opaque\"/\"mode\": \"$m\", \"tolerance\": 0, \"max_layers\": 0/" "$tmp/scene.json" >"$tmp/$m.json"
+  "$zsweep" render "$tmp/$m.json" -o "$tmp/$m.exr" --stats "$tmp/$m.st.json" >/dev/null || { echo "FAIL render $m"; fail=1; }
+  "$zsweep" render "$tmp/$m.json" -o "$tmp/$m.2.exr" --threads 2 --tile-size 16 >/dev/null || fail=1
+  same "$tmp/$m.exr" "$tmp/$m.2.exr" "$m: threads and tiles"
+  grep -q '"fragments_composited"' "$tmp/$m.st.json" || { echo "FAIL $m stats: $(cat "$tmp/$m.st.json")"; fail=1; }
+done
+"$zsweep" reference "$tmp/sorted.json" -o "$tmp/tref.exr" >/dev/null || fail=1
+close "$tmp/sorted.exr" "$tmp/tref.exr" "sorted vs reference"
+same "$tmp/sorted.exr" "$tmp/peel.exr" "peel to completion vs sorted"
+close "$tmp/sorted.exr" "$tmp/dual_peel.exr" "dual_peel to completion vs sorted"
+
 # Bad scenes: one line naming the scene, exit 1, no output file.
 bad() {  # name json expected-substring
   printf '%s\n' "$2" >"$tmp/$1.json"
@@ -79,7 +94,7 @@ bad shading_on_volume '{"mesh": "m.off", "shading": {}}' "'shading' is for spher
 bad unknown_key '{"spheres": "set.sph", "render": {"scan": "span"}}' "render"
 bad bad_mode '{"spheres": "set.sph", "render": {"mode": "glass"}}' "render.mode must be"
 bad bad_color '{"spheres": {"path": "set.sph", "color": "scalar"}}' "no scalar"
-bad not_built '{"spheres": "set.sph", "render": {"mode": "sorted"}}' "only \"opaque\" renders today"
+bad bad_tolerance '{"spheres": "set.sph", "render": {"mode": "sorted", "tolerance": 300}}' "render.tolerance"
 bad missing_file '{"spheres": "nowhere.sph"}' "nowhere.sph"
 bad bad_light '{"spheres": "set.sph", "shading": {"light_direction": [0, 0, 0]}}' "light_direction"
 exit $fail
