@@ -159,8 +159,8 @@ def run_ours(scene_path, out, threads, basic, repeat, budget):
     return row
 
 
-def compare(a, b):
-    p = subprocess.run([ZSWEEP, "compare", a, b, "--json"], capture_output=True, text=True)
+def compare(a, b, *extra):
+    p = subprocess.run([ZSWEEP, "compare", a, b, "--json", *extra], capture_output=True, text=True)
     if p.returncode != 0:
         return float("nan"), float("nan")
     j = json.loads(p.stdout)
@@ -169,9 +169,11 @@ def compare(a, b):
 
 # ---------------------------------------------------------------- VTK
 
-def vtk_worker(path, size, repeat):
+def vtk_worker(path, size, repeat, translucent=False):
     """Reads cameras (one JSON line each) on stdin, renders the set with
-    vtkOpenGLSphereMapper, answers one JSON line per camera."""
+    vtkOpenGLSphereMapper, answers one JSON line per camera. `translucent`
+    (bench_spheres_translucent.py): the RGBA scalars' alpha makes the actor
+    translucent, drawn with depth peeling (32 peels, occlusion ratio 0)."""
     import vtk
     from vtk.util import numpy_support as ns
     vtk.vtkObject.GlobalWarningDisplayOff()
@@ -206,6 +208,12 @@ def vtk_worker(path, size, repeat):
     ren.SetBackground(0, 0, 0)
     win = vtk.vtkRenderWindow()
     win.SetOffScreenRendering(1)
+    if translucent:
+        ren.SetUseDepthPeeling(1)
+        ren.SetMaximumNumberOfPeels(32)
+        ren.SetOcclusionRatio(0.0)
+        win.SetAlphaBitPlanes(1)
+        win.SetMultiSamples(0)
     win.AddRenderer(ren)
     win.SetSize(size, size)
     load_s = time.perf_counter() - t0
@@ -255,7 +263,14 @@ def vtk_worker(path, size, repeat):
             w.SetFileName(c["_png"])
             w.SetInputConnection(grab.GetOutputPort())
             w.Write()
-        out["peak_rss_mb"] = peak_rss_mb()
+        if translucent:
+            out["depth_peeling"] = ren.GetLastRenderingUsedDepthPeeling()
+            out["translucent_actor"] = actor.HasTranslucentPolygonalGeometry()
+            if c.get("_png") and pd.GetPointData().GetScalars() is not None:
+                out["peak_rss_mb"] = peak_rss_mb()  # before the check's second upload
+                from bench_spheres_translucent import vtk_opaque_check
+                out.update(vtk_opaque_check(vtk, ns, win, ren, actor, pd, px, c["_png"]))
+        out.setdefault("peak_rss_mb", peak_rss_mb())
         sys.stdout.write(json.dumps(out) + "\n")
         sys.stdout.flush()
 
@@ -275,11 +290,11 @@ class VtkProcess:
     """The VTK worker of one set; `frame(cam)` returns its answer, or a dict
     with 'error' once it died or timed out (then it is not asked again)."""
 
-    def __init__(self, path, size, repeat, first_timeout, frame_timeout, budget):
+    def __init__(self, path, size, repeat, first_timeout, frame_timeout, budget, extra=()):
         self.spent, self.budget = 0.0, budget
         env = dict(os.environ, LP_NUM_THREADS="1", OMP_NUM_THREADS="1")
         self.p = subprocess.Popen([sys.executable, os.path.abspath(__file__), "--vtk-worker", path,
-                                   "--size", str(size), "--repeat", str(repeat)],
+                                   "--size", str(size), "--repeat", str(repeat), *extra],
                                   stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                   text=True, env=env)
         self.first_timeout, self.frame_timeout = first_timeout, frame_timeout
@@ -406,7 +421,8 @@ def parser():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sets", default="c1,c2,c3,c4")
     ap.add_argument("--size", type=int, default=None, help="image width and height (default 1024; --quick 256)")
-    ap.add_argument("--frames", type=int, default=None, help="orbit frames (default 4; --quick 3)")
+    ap.add_argument("--frames", type=int, default=None,
+                    help="orbit frames (default 4; --quick 3; --translucent 1, the automatic camera)")
     ap.add_argument("--counts", default=None,
                     help="spheres per set, comma-separated in --sets order (default: full sizes; --quick: ~20 K)")
     ap.add_argument("--repeat", type=int, default=None,
@@ -426,7 +442,15 @@ def parser():
     ap.add_argument("--doc", action="store_true",
                     help="write the tables into docs/spheres-bench.md and the plots to docs/bench/spheres-*.png")
     ap.add_argument("--replot", metavar="DIR", help="redraw the plots from DIR's CSVs (with --doc: into docs/bench)")
+    ap.add_argument("--translucent", action="store_true",
+                    help="the translucency benchmark instead (bench_spheres_translucent.py): modes, layers, "
+                         "errors against sorted exact, VTK's depth peeling, the Embree reference")
+    ap.add_argument("--translucent-sweep", choices=("small", "full"), default=None,
+                    help="--translucent's error sweep over tolerance and layer cap (default full; --quick small)")
+    ap.add_argument("--render-timeout", type=float, default=900,
+                    help="--translucent: s per zsweep render or reference (recorded as a timeout)")
     ap.add_argument("--vtk-worker", help=argparse.SUPPRESS)
+    ap.add_argument("--vtk-translucent", action="store_true", help=argparse.SUPPRESS)
     return ap
 
 
@@ -444,7 +468,10 @@ def main():
     ap = parser()
     a = ap.parse_args()
     if a.vtk_worker:
-        return vtk_worker(a.vtk_worker, a.size, a.repeat)
+        return vtk_worker(a.vtk_worker, a.size, a.repeat, a.vtk_translucent)
+    if a.translucent:
+        import bench_spheres_translucent
+        return bench_spheres_translucent.main(a, ap)
     if a.replot:
         return replot(a.replot, a.doc)
     size = a.size or (256 if a.quick else 1024)

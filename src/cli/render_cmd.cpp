@@ -201,8 +201,6 @@ void write_sphere_stats(const std::string& path, const SphereStats& S, const Sce
         {"fragments_composited", S.composited},
         {"pixels_stopped", S.pixels_stopped},
         {"spheres_clear", S.spheres_clear},
-        {"flushes", S.flushes},
-        {"pending_peak", S.pending_peak},
         {"passes", S.passes},
         {"layers_max", S.layers_max},
         {"layers_mean", S.layer_pixels ? double(S.layer_sum) / double(S.layer_pixels) : 0.0},

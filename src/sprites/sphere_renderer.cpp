@@ -74,7 +74,6 @@ struct SphereRenderer::Impl {
   std::vector<uint64_t> bin_offset;  // tiles + 1
   std::vector<uint32_t> bin_ids;     // grid entries per tile, front-to-back cell order
   tbb::enumerable_thread_specific<TileState> states;
-  uint64_t pool_limit = 0;
 
   Impl(const SphereSet& spheres, const std::vector<glm::vec4>& c, const SphereGrid& grid_, const SphereRenderSettings& settings,
        uint64_t extra_bytes)
@@ -107,12 +106,12 @@ struct SphereRenderer::Impl {
     check(shared + s.size() * 4);
 
     // Translucent modes: only opaque spheres hide others (culling stays
-    // lossless), and each thread may hold pending fragments (sorted).
+    // lossless), and each thread holds a tile's translucent state.
     std::vector<uint8_t> occluder;
     if (rs.mode != SphereMode::Opaque) {
       occluder.resize(g.ids.size());
       for (size_t e = 0; e < g.ids.size(); ++e) occluder[e] = colors[g.ids[e]].a >= 1.f;
-      shared += occluder.size() + uint64_t(threads) * uint64_t(rs.tile_size) * rs.tile_size * 160;
+      shared += occluder.size() + uint64_t(threads) * uint64_t(rs.tile_size) * rs.tile_size * TranslucentTile::kPixelBytes;
       check(shared);
     }
     const auto t_vis = Clock::now();
@@ -138,7 +137,13 @@ struct SphereRenderer::Impl {
       uint32_t c0, c1, r0, r1;  // c0 > c1: no pixel centre of the image
     };
     std::vector<Box> boxes(visible.size());
-    std::vector<std::pair<double, uint32_t>> key(visible.size());  // (nearest depth, index into visible)
+    struct Key {
+      double z;     // nearest depth
+      uint32_t id;  // sphere index: ties broken the same way whatever the culling
+      uint32_t q;   // index into visible
+      bool operator<(const Key& o) const { return z < o.z || (z == o.z && id < o.id); }
+    };
+    std::vector<Key> key(visible.size());
     shared += boxes.size() * (sizeof(Box) + sizeof(key[0]));
     check(shared);
     tbb::task_arena arena(threads);
@@ -147,7 +152,7 @@ struct SphereRenderer::Impl {
         for (size_t q = br.begin(); q < br.end(); ++q) {
           const uint32_t e = visible[q];
           const glm::dvec3 c = to_camera(view, g.centre[e]);
-          key[q] = {c.z - g.radius[e], uint32_t(q)};
+          key[q] = {c.z - g.radius[e], g.ids[e], uint32_t(q)};
           const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, g.radius[e]);
           int i0, i1, j0, j1;
           if (!sphere_pixel_range(su, image, &i0, &i1, &j0, &j1)) {
@@ -157,11 +162,11 @@ struct SphereRenderer::Impl {
           boxes[q] = {uint32_t(i0) / size, uint32_t(i1) / size, uint32_t(j0) / size, uint32_t(j1) / size};
         }
       });
-      // By nearest depth, then by position in the visible list (the cells'
-      // order), so the order, like the image, is the same every run. A
-      // tile's first spheres then hide most of the rest, which its block
-      // test skips whole; the order changes no pixel (the depth test is
-      // order-independent), only the work.
+      // By nearest depth, then by sphere index: one order of the spheres
+      // whatever the culling, grid or tiles. A tile's first spheres then
+      // hide most of the rest, which its block test skips whole. The order
+      // changes no pixel of the opaque and sorted modes (their depth tests
+      // are order-independent), only the work; the weighted sum adds in it.
       tbb::parallel_sort(key.begin(), key.end());
     });
     bin_offset.assign(uint64_t(grid.count()) + 1, 0);
@@ -176,14 +181,12 @@ struct SphereRenderer::Impl {
     bin_ids.resize(S.bin_entries);
     std::vector<uint64_t> next(bin_offset.begin(), bin_offset.end() - 1);
     for (const auto& kq : key) {
-      const uint32_t q = kq.second;
+      const uint32_t q = kq.q;
       const Box& b = boxes[q];
       for (uint32_t r = b.r0; b.c0 <= b.c1 && r <= b.r1; ++r)
         for (uint32_t c = b.c0; c <= b.c1; ++c) bin_ids[next[uint64_t(r) * cols + c]++] = visible[q];
     }
     S.ms_binning = ms_since(t_bin);
-    // The rest of the budget is the pending fragments' (two pools per thread).
-    pool_limit = budget > shared ? (budget - shared) / threads / (2 * TranslucentTile::kFragBytes) : 0;
     S.ms_setup = ms_since(t_start);
   }
 
@@ -224,7 +227,7 @@ struct SphereRenderer::Impl {
     SphereStats& S = ts.stats;
     if (rs.mode != SphereMode::Opaque) {
       if (!ts.translucent) ts.translucent = std::make_unique<TranslucentTile>();
-      const TranslucentFrame f{&s, &g, &colors, &rs, &view, cam, pool_limit};
+      const TranslucentFrame f{&s, &g, &colors, &rs, &view, cam};
       return ts.translucent->render(f, bin_ids.data() + bin_offset[t], bin_offset[t + 1] - bin_offset[t], r, S);
     }
     const uint32_t w = r.width(), h = r.height();

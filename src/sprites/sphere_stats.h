@@ -21,12 +21,11 @@ struct SphereStats {
   uint64_t rendered_pixels = 0;
   // Translucent modes (translucent_tile.h), per tile, summed (the peaks and
   // layers_max: the largest): fragments composited, pixels stopped by the
-  // tolerance (Eq. 4.2), spheres skipped for alpha 0; sorted: flushes of the
-  // pending fragments and the most pending in one tile; peel and dual_peel:
-  // passes over the spheres, the most layers of a tile, and layers per pixel
-  // with a translucent fragment (layer_sum / layer_pixels: the mean).
+  // tolerance (Eq. 4.2), spheres skipped for alpha 0, passes over the
+  // spheres (sorted's k-buffer passes too); peel and dual_peel: the most
+  // layers at a pixel, and layers per pixel with a translucent fragment
+  // (layer_sum / layer_pixels: the mean).
   uint64_t composited = 0, pixels_stopped = 0, spheres_clear = 0;
-  uint64_t flushes = 0, pending_peak = 0;
   uint64_t passes = 0, layers_max = 0, layer_sum = 0, layer_pixels = 0;
   uint64_t peak_rss_bytes = 0, memory_budget_bytes = 0, shared_bytes = 0;
 };
@@ -43,8 +42,6 @@ inline void add_tile_stats(SphereStats& into, const SphereStats& tile) {
   into.composited += tile.composited;
   into.pixels_stopped += tile.pixels_stopped;
   into.spheres_clear += tile.spheres_clear;
-  into.flushes += tile.flushes;
-  into.pending_peak = into.pending_peak > tile.pending_peak ? into.pending_peak : tile.pending_peak;
   into.passes += tile.passes;
   into.layers_max = into.layers_max > tile.layers_max ? into.layers_max : tile.layers_max;
   into.layer_sum += tile.layer_sum;

@@ -5,26 +5,27 @@
 // that surface, and alpha. A sphere of alpha 1 is opaque: its visible
 // surface ends the pixel. Alpha 0 draws nothing.
 //
-// - sorted: exact. The tile's spheres arrive nearest first (by the nearest
-//   depth they can have), so once the next one's nearest depth is Z every
-//   fragment in front of Z is known: pending fragments in front of Z are
-//   sorted per pixel and composited (the ZSweep engine's delayed
-//   compositing, with the sweep plane at Z), whenever the pending pool
-//   fills. A pixel stops once opaque or, with a tolerance t, once
-//   1 − A <= t/510 (Eq. 4.2); its later fragments are never made.
+// - sorted: exact. Passes over the tile's spheres, each keeping per pixel
+//   the kSortedLayers nearest fragments behind those composited so far (a
+//   k-buffer), then compositing them in order; a pixel leaves the passes
+//   once opaque, once 1 − A <= t/510 with tolerance t (Eq. 4.2), or once it
+//   had fewer fragments left than the buffer holds. Memory: kSortedLayers
+//   fragments per tile pixel and thread, whatever the depth complexity.
 // - peel: the seed's front depth peeling: the opaque spheres once into a
 //   background (depth and colour), then one pass over the translucent
 //   spheres per layer, each keeping per pixel the nearest fragment behind the
 //   last layer and in front of the background; the same stop, a layer cap,
 //   and the list of spheres that may still give a layer, shrunk every pass
 //   (the seed's transform-feedback cache). Run to completion it is `sorted`
-//   bit for bit.
+//   bit for bit (a one-fragment k-buffer).
 // - dual_peel: two layers per pass (nearest and farthest left), the back
 //   ones composited back to front; no early stop.
 // - weighted: Meshkin's order-independent weighted sum over the background.
 //
-// Every result is a function of the pixel's set of fragments and their total
-// order (FragKey), so tiles, threads and culling never change a bit.
+// Every pass skips, per 8×8 block and per pixel, spheres whose depth bound
+// lies behind the pixel's thresholds (sphere_tile_scan.h). Every result is a
+// function of the pixel's set of fragments and their total order (FragKey),
+// so tiles, threads and culling never change a bit.
 #pragma once
 
 #include <cstdint>
@@ -40,6 +41,7 @@
 #include "sprites/sphere_grid.h"
 #include "sprites/sphere_settings.h"
 #include "sprites/sphere_stats.h"
+#include "sprites/sphere_tile_scan.h"
 #include "view/camera.h"
 
 namespace zs {
@@ -52,50 +54,51 @@ struct TranslucentFrame {
   const SphereRenderSettings* rs;
   const View* view;
   CameraPlane cam;
-  uint64_t pool_limit;  // pending fragments a thread may hold (sorted), from the memory budget
 };
 
 // A thread's scratch, reused from tile to tile (no allocation per fragment).
 class TranslucentTile {
  public:
   // Renders the tile from its bin (grid entries, nearest first) into RGBA +
-  // Z floats per pixel; adds its counts to `stats`. Throws
-  // std::runtime_error when sorted's pending fragments outgrow pool_limit.
+  // Z floats per pixel; adds its counts to `stats`.
   const float* render(const TranslucentFrame& f, const uint32_t* bin, uint64_t count, const TileRect& r,
                       SphereStats& stats);
 
-  // Bytes per pending fragment (sorted), for budgets.
-  static constexpr uint64_t kFragBytes = 24;
+  // sorted's k-buffer depth, and a thread's bytes per tile pixel (for budgets).
+  static constexpr uint32_t kSortedLayers = 16;
+  static constexpr uint64_t kPixelBytes = kSortedLayers * 16 + 160;
 
   struct Live {  // a translucent sphere that may still give a layer
     SphereSetup su;
     int i0, i1, j0, j1;  // pixel range, tile coordinates
     double z_reject;     // no computed depth of it is nearer
     uint32_t id;
+    bool opaque;
   };
 
  private:
-  struct Frag {
-    double z;
-    uint64_t code;
-    int32_t next;  // the pixel's next pending fragment, -1: none
-  };
-
   void sorted();
-  void flush(double z_plane);
   void peel();
   void dual_peel();
   void weighted();
   void opaque_background();
+  enum class Which { All, Opaque, Translucent };
+  void gather_live(Which which);
   void finish();  // acc over the image background, Z, into out_
+  // One pass over live_: fn(p, key) for the fragments it may need; drops
+  // the spheres for which neither fn returned true nor a pixel was skipped
+  // for now (they can give nothing in a later pass).
+  template <class Fn>
+  void pass(Fn&& fn);
+  void set_gone(size_t p, double z);
+  void set_now(size_t p, double z);
+  void begin_pass();  // now = gone everywhere
 
   // The fragment's premultiplied colour (shaded as the opaque renderer shades).
   void color(size_t p, const FragKey& k, double c[4]) const;
   double alpha(uint32_t id) const;
   // Pixel p's fragments of the sphere hit by `h` (one or two), in order.
   int fragments(const SphereHit& h, uint32_t id, bool opaque, FragKey out[2]) const;
-  bool block_hidden(int i0, int i1, int j0, int j1, double z);
-  void mark_block(size_t p);
 
   const TranslucentFrame* f_ = nullptr;
   const uint32_t* bin_ = nullptr;
@@ -106,24 +109,42 @@ class TranslucentTile {
   SphereStats* S_ = nullptr;
   double stop_ = -1;
 
-  std::vector<double> acc_;    // 4 per pixel: the composite so far, premultiplied
-  std::vector<double> zfirst_; // the nearest fragment composited (Z)
-  std::vector<double> cut_;    // fragments behind this cannot count (an opaque one in front; -inf: pixel done)
-  std::vector<double> bcut_;   // per 8×8 block: the largest cut (lazily)
-  std::vector<uint8_t> bdirty_;
-  // sorted
-  std::vector<Frag> pool_, pool2_;
-  std::vector<int32_t> head_;
-  std::vector<uint32_t> active_, active2_;
-  std::vector<FragKey> scratch_;
-  uint64_t pool_cap_ = 0;
-  // peeling
-  std::vector<FragKey> bg_, prev_, cur_, far_, mx_;
-  std::vector<double> back_;  // dual peeling's back composite, 4 per pixel
+  std::vector<double> acc_;     // 4 per pixel: the composite so far, premultiplied
+  std::vector<double> zfirst_;  // the nearest fragment composited (Z)
+  std::vector<double> gone_;    // fragments behind this can never count (-inf: pixel done)
+  std::vector<double> now_;     // ... cannot count in this pass
+  BlockMax gone_max_, now_max_;
   std::vector<Live> live_;
-  std::vector<uint32_t> layers_;
+  std::vector<double> zlow_;
   FaceSpans spans_;
+  std::vector<FragKey> prev_;   // the last fragment composited
+  // sorted
+  std::vector<FragKey> kbuf_;   // kSortedLayers per pixel, ascending
+  std::vector<uint8_t> kcount_;
+  // peeling
+  std::vector<FragKey> bg_, cur_, far_, mx_;
+  std::vector<double> back_;  // dual peeling's back composite, 4 per pixel
+  std::vector<uint32_t> layers_;
   std::vector<float> out_;
 };
+
+template <class Fn>
+void TranslucentTile::pass(Fn&& fn) {
+  const PixelThresholds th{gone_.data(), now_.data(), &gone_max_, &now_max_};
+  size_t keep = 0;
+  for (size_t q = 0; q < live_.size(); ++q) {
+    const Live& L = live_[q];
+    bool useful = false;
+    ++S_->spheres_scanned;
+    const bool deferred = for_each_sphere_hit(L.su, vp_, L.i0, L.i1, L.j0, L.j1, L.z_reject, th, zlow_, spans_, *S_,
+                                              [&](size_t p, const SphereHit& h) {
+                                                FragKey k[2];
+                                                const int m = fragments(h, L.id, L.opaque, k);
+                                                for (int u = 0; u < m; ++u) useful |= fn(p, k[u], L.opaque);
+                                              });
+    if (useful || deferred) live_[keep++] = L;
+  }
+  live_.resize(keep);
+}
 
 }  // namespace zs

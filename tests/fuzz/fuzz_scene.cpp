@@ -40,7 +40,8 @@ void render_spheres(const zs::Scene& scene) {
   rs.threads = 1;
   rs.progress = false;
   rs.tile_size = 8;
-  rs.mode = SphereMode::Opaque;
+  // rs.mode, surfaces, tolerance and max_layers as the scene says: every
+  // translucent mode runs too (the transfer function gives mixed alphas).
   struct Discard : TileSink {
     void tile(const TileRect&, const float*) override {}
   } sink;

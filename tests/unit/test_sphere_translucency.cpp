@@ -12,6 +12,7 @@
 #include "reference/sphere_reference.h"
 #include "sprites/fragment_composite.h"
 #include "sprites/sphere_renderer.h"
+#include "sprites/translucent_tile.h"
 
 namespace zs {
 namespace {
@@ -282,6 +283,36 @@ TEST(SphereTranslucency, DualPeelWithCapShowsNearestAndFarthestOnly) {
   const Out dual = stack(12, 0.3f, SphereMode::DualPeel, 0, 4, {1, 0.5f, 0.2f}, 0.4);
   EXPECT_EQ(dual.stats.layers_max, 4u);  // two passes: 2 front + 2 back layers
   EXPECT_GT(max_diff(exact, dual), 0.01);
+}
+
+}  // namespace
+}  // namespace zs
+
+namespace zs {
+namespace {
+
+// More fragments per pixel than sorted's k-buffer holds: several passes,
+// still the peeled (exact) sequence bit for bit, both surfaces, both projections.
+TEST(SphereTranslucency, SortedBeyondItsBufferTakesMorePassesAndStaysExact) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1);
+  SphereSet s;
+  std::vector<glm::vec4> col;
+  for (int k = 0; k < 80; ++k) {  // nested, large: every centre ray crosses most of them twice
+    s.centres.push_back({0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)});
+    s.radii.push_back(1.0 + 2.0 * (u(rng) + 1) / 2);
+    col.push_back({float(u(rng) + 1) / 2, 0.5f, float(u(rng) + 1) / 2, 0.04f});
+  }
+  for (Projection p : {Projection::Orthographic, Projection::Perspective}) {
+    SphereRenderSettings rs = settings(p, SphereMode::Sorted, 40, 32);
+    rs.shading.model = ShadingModel::Phong;
+    const Out sorted = render(s, col, rs);
+    rs.mode = SphereMode::Peel;
+    const Out peel = render(s, col, rs);
+    EXPECT_TRUE(same_bits(sorted, peel));
+    EXPECT_GT(peel.stats.layers_max, 2 * TranslucentTile::kSortedLayers);
+    EXPECT_GT(sorted.stats.passes, 2 * sorted.stats.tiles);  // a k-buffer pass per 16 layers
+  }
 }
 
 }  // namespace
