@@ -12,8 +12,10 @@ rows are then means over the frames):
   time_ms.total (loading the set and the grid are not in it), the stats'
   `translucency` counts and peak RSS;
 - the error sweep (automatic camera only): peel over t x cap, sorted over t,
-  dual_peel over the cap, weighted, each compared (`zsweep compare`: max abs
-  and RMSE over R, G, B, A) with sorted exact; the t/2-levels bound is
+  dual_peel over the cap, weighted, each compared with sorted exact (max abs
+  and RMSE over R, G, B, A: `zsweep compare`'s formula, in process, on the
+  renders' uncompressed TIFFs; checked once per set against `zsweep
+  compare`); the t/2-levels bound is
   checked on every row, and whether it is guaranteed: the tolerance stop
   alone keeps a pixel within t/510 (t/2 8-bit levels); a cap of n layers
   keeps that only when every translucent sphere has alpha >= 1 - (t/510)^(1/n);
@@ -341,6 +343,8 @@ def run_set(a, name, count, size, cams, img, scenes, vtk_rows, emb_rows):
         warm = vtkp.frame(dict(cams[0][1], _warmup=True))
         print(f"{name}: VTK " + (f"loaded in {warm['load_s']:.1f} s, warm-up frame {warm['warmup_s']:.1f} s"
                                  if "error" not in warm else warm["error"]), flush=True)
+        if "warmup_s" in warm:  # a timed frame peels as long as the warm-up did (and the check renders twice)
+            vtkp.frame_timeout = max(vtkp.frame_timeout, 2.5 * warm["warmup_s"] + 60)
     for fname, cam in cams:
         for label, mode, t, cap, surf in TABLE5:
             S.run(fname, cam, variant(mode, t, cap, surf))
@@ -436,8 +440,36 @@ def run_set(a, name, count, size, cams, img, scenes, vtk_rows, emb_rows):
 
 # ---------------------------------------------------------------- main
 
+def replot(d, doc):
+    """The plots again from DIR's CSVs (with --doc: into docs/bench)."""
+    import csv
+    from bench_spheres_translucent_tables import plots
+
+    def num(v):
+        try:
+            x = float(v)
+        except ValueError:
+            return v
+        return int(x) if x.is_integer() and "." not in v and "e" not in v else x
+
+    def load(f):
+        return [{k: num(v) for k, v in r.items()} for r in csv.DictReader(open(os.path.join(d, f)))]
+    summary, errors = load("translucent-summary.csv"), load("translucent-errors.csv")
+    for r in errors:
+        if isinstance(r.get("ms"), int):
+            r["ms"] = float(r["ms"])
+    files = plots(summary, [], errors, [], [], d)
+    if doc:
+        for f in files:
+            shutil.copy(f, os.path.join(ROOT, "docs", "bench", os.path.basename(f)))
+    print("wrote", ", ".join(files))
+    return 0
+
+
 def main(a, ap):
     from bench_spheres_translucent_tables import all_cols, doc_lines, plots, summarize, write_doc_block
+    if a.replot:
+        return replot(a.replot, a.doc)
     size = a.size or (256 if a.quick else 1024)
     nframes = a.frames or 1
     sets = a.sets.split(",")

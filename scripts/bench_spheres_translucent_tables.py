@@ -51,6 +51,7 @@ def summarize(name, count, size, mode_rows, err_rows, astats, vtk_rows, emb, bud
         s["vtk_depth_peeling"] = "yes" if ok and all(r.get("depth_peeling") == 1 for r in ok) else "no"
         s["vtk_peak_rss_mb"] = max([r["peak_rss_mb"] for r in ok] or [nan])
         s["vtk_warmup_s"] = next((r["warmup_s"] for r in vt if "warmup_s" in r), nan)
+        s["vtk_load_s"] = next((r["load_s"] for r in vt if "load_s" in r), nan)
         a = next((r for r in vt if r.get("png")), {})
         s["vtk_rmse_vs_opaque"] = a.get("rmse_vs_opaque", nan)
         s["vtk_rgb_max_abs_vs_front_exact"] = a.get("rgb_vs_front_exact_max_abs", nan)
@@ -91,9 +92,11 @@ def doc_lines(a, summary, mode_rows, err_rows, vtk_rows, emb_rows, size, cams, w
          + (f" and {nfr - 1} orbit frames (Table 5 rows: means over the {nfr} frames)" if nfr > 1 else "") +
          f", one thread, `render --frames {a.repeat or 1}`, memory budget {a.memory_budget:g} MiB, "
          f"render timeout {a.render_timeout:g} s.", "",
-         "Table 5 analogue (t: tolerance in 8-bit levels, cap: `max_layers`; sorted takes no cap; ms/layer = "
-         "ms / layers max; layers are counted by the peeling modes only; error vs sorted exact of the same "
-         "surfaces, max abs and RMSE over R, G, B, A):", "",
+         "Table 5 analogue (t: tolerance in 8-bit levels, cap: `max_layers`; sorted takes no cap; passes over "
+         "the spheres, summed over tiles; ms/layer = "
+         "ms / layers max; layers are counted by the peeling modes only; fragments composited: sorted and "
+         "peel count the opaque surface under the layers too, dual_peel and weighted the translucent fragments "
+         "only; error vs sorted exact of the same surfaces, max abs and RMSE over R, G, B, A):", "",
          "| set | mode | t | cap | surfaces | ms | passes | layers max | layers mean | ms/layer "
          "| fragments composited | pixels stopped | peak RSS MiB | max abs | RMSE | exit |",
          "| --- | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"]
@@ -108,7 +111,7 @@ def doc_lines(a, summary, mode_rows, err_rows, vtk_rows, emb_rows, size, cams, w
             lm = m("layers_max", max)
             pl = mode in ("peel", "dual_peel")
             L.append(f"| {s['set'].upper()} | {label} | {t if mode in ('sorted', 'peel') else '–'} | "
-                     f"{cap if pl else '–'} | {surf} | {fmt(m('ms'))} | {fmt(m('passes'), 0) if pl else '–'} | "
+                     f"{cap if pl else '–'} | {surf} | {fmt(m('ms'))} | {fmt(m('passes'), 0)} | "
                      f"{fmt(lm, 0) if pl else '–'} | {fmt(m('layers_mean'), 2) if pl else '–'} | "
                      f"{fmt(m('ms') / lm, 2) if pl and lm else '–'} | {fmt(m('fragments_composited'), 0)} | "
                      f"{fmt(m('pixels_stopped'), 0)} | {fmt(m('peak_rss_mb', max), 0)} | "
@@ -144,7 +147,7 @@ def doc_lines(a, summary, mode_rows, err_rows, vtk_rows, emb_rows, size, cams, w
               "Image check on the automatic camera: VTK's image vs the same VTK frame with every alpha 255 "
               "(RMSE, must be > 0), and vs our exact front-surfaces image (`zsweep compare --rgb`; different "
               "shading, so only indicative):", "",
-              "| set | VTK ms | frames | depth peeling used | warm-up s | VTK peak RSS MiB | ours sorted ms | "
+              "| set | VTK ms | frames | depth peeling used | load s, warm-up s | VTK peak RSS MiB | ours sorted ms | "
               "VTK / sorted | ours sorted front ms | VTK / sorted front | vs opaque VTK (RMSE) | "
               "vs ours front exact (max abs, RMSE) |",
               "| --- | ---: | :---: | :---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"]
@@ -153,7 +156,7 @@ def doc_lines(a, summary, mode_rows, err_rows, vtk_rows, emb_rows, size, cams, w
                 continue
             err = f" ({s['vtk_error']})" if s.get("vtk_error") else ""
             L.append(f"| {s['set'].upper()} | {fmt(s['vtk_ms'])} | {s['vtk_frames']}{err} | {s['vtk_depth_peeling']} | "
-                     f"{fmt(s['vtk_warmup_s'])} | {fmt(s['vtk_peak_rss_mb'], 0)} | {fmt(s['sorted_ms'])} | "
+                     f"{fmt(s['vtk_load_s'])}, {fmt(s['vtk_warmup_s'])} | {fmt(s['vtk_peak_rss_mb'], 0)} | {fmt(s['sorted_ms'])} | "
                      f"{fmt(s['vtk_over_sorted'], 1)}× | {fmt(s['sorted_front_ms'])} | "
                      f"{fmt(s['vtk_over_sorted_front'], 1)}× | {fmt(s['vtk_rmse_vs_opaque'], 4)} | "
                      f"{fmt(s['vtk_rgb_max_abs_vs_front_exact'], 3)}, {fmt(s['vtk_rgb_rmse_vs_front_exact'], 4)} |")
@@ -195,6 +198,7 @@ def plots(summary, mode_rows, err_rows, vtk_rows, emb_rows, outdir):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker  # noqa: F401
     files = []
     styles = {"sorted": ("o", "C0"), "peel": ("s", "C1"), "dual_peel": ("^", "C2"), "weighted": ("D", "C3")}
     for s in summary:
@@ -216,6 +220,9 @@ def plots(summary, mode_rows, err_rows, vtk_rows, emb_rows, outdir):
         ax.text(0.01, 0.02, f"RMSE 0 (exact) plotted at {FLOOR:g}", transform=ax.transAxes, fontsize=6)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        for axis in (ax.xaxis.set_major_formatter, ax.xaxis.set_minor_formatter):
+            axis(matplotlib.ticker.FuncFormatter(lambda x, _: f"{x:g}"))
+        ax.tick_params(axis="x", which="minor", labelsize=6)
         ax.set_xlabel("ms per frame, 1 thread")
         ax.set_ylabel("RMSE vs sorted exact")
         ax.set_title(f"{s['set'].upper()} ({s['spheres']:,} spheres), {s['size']}²: time vs error "
