@@ -16,8 +16,8 @@ Timing discipline:
   of R Render() + WaitForCompletion() calls after a warm-up frame (which
   compiles the shaders and uploads the points); the worker is bounded by
   --vtk-timeout (load + warm-up) and --vtk-frame-timeout (per frame);
-- Embree: `zsweep reference` can not take a scene camera (it frames the set
-  itself), so it is timed on its own automatic perspective camera, and ours is
+- Embree: `zsweep reference` is run on the set file, so it frames the set
+  itself: it is timed on its own automatic perspective camera, and ours is
   rendered on that same camera (written into a scene) for the comparison; the
   two images are compared to show the cameras agree.
 """
