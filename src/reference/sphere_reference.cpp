@@ -305,9 +305,13 @@ void SphereReference::crossings(double X, double Y, std::vector<SphereCrossing>*
              out->end());
 }
 
-SphereReferenceImage render_sphere_reference(const SphereSet& spheres, const std::vector<glm::vec4>& colors,
-                                             const Shading& shading, const View& view, const double background[4],
-                                             int threads) {
+namespace {
+
+// The shared frame of both reference images: checks, the BVH, then
+// pixel(ref, i, j, px, &depth) -> hit at every pixel on `threads` threads.
+template <class Pixel>
+SphereReferenceImage trace_image(const SphereSet& spheres, const std::vector<glm::vec4>& colors, const View& view,
+                                 int threads, Pixel&& pixel) {
   if (colors.size() != spheres.size())
     throw std::runtime_error("sphere reference: " + std::to_string(colors.size()) + " colours for " +
                              std::to_string(spheres.size()) + " spheres");
@@ -319,28 +323,13 @@ SphereReferenceImage render_sphere_reference(const SphereSet& spheres, const std
   const SphereReference ref(spheres, view, threads);
   res.ms_build = ms_since(t0);
   res.invalid = ref.invalid();
-  // v = −u in view space: the ray's direction (r, u, −f components) negated.
-  auto to_eye = [&](double X, double Y) {
-    glm::dvec3 o, u;
-    view.ray(X, Y, &o, &u);
-    return glm::dvec3(-glm::dot(u, view.right()), -glm::dot(u, view.up()), glm::dot(u, view.forward()));
-  };
   std::atomic<uint64_t> hits{0};
   auto rows = [&](const tbb::blocked_range<uint32_t>& r) {
     uint64_t h = 0;
     for (uint32_t j = r.begin(); j != r.end(); ++j)
       for (uint32_t i = 0; i < W; ++i) {
-        float* px = res.rgba.at(i, j);
-        double depth;
-        uint32_t id;
-        glm::dvec3 n;
-        if (!ref.nearest(i, j, &depth, &id, &n)) {
-          for (int k = 0; k < 4; ++k) px[k] = float(background[k]);
-          continue;
-        }
-        const glm::vec4& c = colors[id];
-        const glm::dvec3 rgb = shade(shading, glm::dvec3(c.r, c.g, c.b), n, to_eye(i, j));
-        px[0] = float(rgb.r), px[1] = float(rgb.g), px[2] = float(rgb.b), px[3] = 1.f;
+        double depth = std::numeric_limits<double>::infinity();
+        if (!pixel(ref, i, j, res.rgba.at(i, j), &depth)) continue;
         res.z[size_t(j) * W + i] = float(depth);
         ++h;
       }
@@ -358,78 +347,72 @@ SphereReferenceImage render_sphere_reference(const SphereSet& spheres, const std
   return res;
 }
 
-}  // namespace zs
+}  // namespace
 
-namespace zs {
+SphereReferenceImage render_sphere_reference(const SphereSet& spheres, const std::vector<glm::vec4>& colors,
+                                             const Shading& shading, const View& view, const double background[4],
+                                             int threads) {
+  // v = −u in view space: the ray's direction (r, u, −f components) negated.
+  auto to_eye = [&](double X, double Y) {
+    glm::dvec3 o, u;
+    view.ray(X, Y, &o, &u);
+    return glm::dvec3(-glm::dot(u, view.right()), -glm::dot(u, view.up()), glm::dot(u, view.forward()));
+  };
+  return trace_image(spheres, colors, view, threads,
+                     [&](const SphereReference& ref, uint32_t i, uint32_t j, float* px, double* depth) {
+                       uint32_t id;
+                       glm::dvec3 n;
+                       if (!ref.nearest(i, j, depth, &id, &n)) {
+                         for (int k = 0; k < 4; ++k) px[k] = float(background[k]);
+                         return false;
+                       }
+                       const glm::vec4& c = colors[id];
+                       const glm::dvec3 rgb = shade(shading, glm::dvec3(c.r, c.g, c.b), n, to_eye(i, j));
+                       px[0] = float(rgb.r), px[1] = float(rgb.g), px[2] = float(rgb.b), px[3] = 1.f;
+                       return true;
+                     });
+}
 
 SphereReferenceImage render_sphere_reference_translucent(const SphereSet& spheres,
                                                          const std::vector<glm::vec4>& colors, const Shading& shading,
                                                          const View& view, const double background[4], int threads,
                                                          bool front_only) {
-  if (colors.size() != spheres.size())
-    throw std::runtime_error("sphere reference: " + std::to_string(colors.size()) + " colours for " +
-                             std::to_string(spheres.size()) + " spheres");
-  SphereReferenceImage res;
-  const uint32_t W = view.width(), H = view.height();
-  res.rgba = Image(W, H);
-  res.z.assign(size_t(W) * H, std::numeric_limits<float>::infinity());
-  auto t0 = std::chrono::steady_clock::now();
-  const SphereReference ref(spheres, view, threads);
-  res.ms_build = ms_since(t0);
-  res.invalid = ref.invalid();
   const glm::dvec3 F = view.forward();
-  std::atomic<uint64_t> hits{0};
-  auto rows = [&](const tbb::blocked_range<uint32_t>& r) {
-    uint64_t h = 0;
-    std::vector<SphereCrossing> xs;
-    std::vector<uint32_t> seen;
-    for (uint32_t j = r.begin(); j != r.end(); ++j)
-      for (uint32_t i = 0; i < W; ++i) {
-        ref.crossings(i, j, &xs);
-        glm::dvec3 o, u;
-        view.ray(i, j, &o, &u);
-        const double k = view.perspective() ? glm::dot(u, F) : 1.0;  // view depth per unit of ray
-        const glm::dvec3 v(-glm::dot(u, view.right()), -glm::dot(u, view.up()), glm::dot(u, F));
-        double acc[4] = {0, 0, 0, 0};
-        double zfirst = std::numeric_limits<double>::infinity();
-        seen.clear();
-        for (const SphereCrossing& x : xs) {
-          const glm::vec4& col = colors[x.id];
-          const double a = col.a >= 1.f ? 1.0 : col.a > 0.f ? double(col.a) : 0.0;
-          if (a == 0) continue;
-          const bool opaque = a == 1;
-          if (front_only || opaque) {  // only the sphere's first (visible) crossing
-            if (std::find(seen.begin(), seen.end(), x.id) != seen.end()) continue;
-            seen.push_back(x.id);
-          }
-          glm::dvec3 n = (o + (x.depth / k) * u - spheres.centres[x.id]) / spheres.radii[x.id];
-          if (glm::dot(n, u) > 0) n = -n;  // facing the viewer
-          const glm::dvec3 nv = glm::normalize(glm::dvec3(glm::dot(n, view.right()), glm::dot(n, view.up()), -glm::dot(n, F)));
-          const glm::dvec3 rgb = shade(shading, glm::dvec3(col.r, col.g, col.b), nv, v);
-          const double c[4] = {rgb.r * a, rgb.g * a, rgb.b * a, a};
-          const double m = 1.0 - acc[3];
-          for (int q = 0; q < 4; ++q) acc[q] += c[q] * m;
-          if (zfirst == std::numeric_limits<double>::infinity()) zfirst = x.depth;
-          if (opaque) break;
-        }
-        const double m = 1.0 - acc[3];
-        float* px = res.rgba.at(i, j);
-        for (int q = 0; q < 4; ++q) px[q] = float(acc[q] + background[q] * m);
-        res.z[size_t(j) * W + i] = float(zfirst);
-        h += zfirst < std::numeric_limits<double>::infinity();
-      }
-    hits += h;
-  };
-  t0 = std::chrono::steady_clock::now();
-  if (threads == 1) {
-    rows(tbb::blocked_range<uint32_t>(0, H));
-  } else {
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<uint32_t>(0, H, 1), rows); });
-  }
-  res.ms_trace = ms_since(t0);
-  res.hits = hits;
-  return res;
+  return trace_image(spheres, colors, view, threads,
+                     [&](const SphereReference& ref, uint32_t i, uint32_t j, float* px, double* depth) {
+                       thread_local std::vector<SphereCrossing> xs;
+                       thread_local std::vector<uint32_t> seen;
+                       ref.crossings(i, j, &xs);
+                       glm::dvec3 o, u;
+                       view.ray(i, j, &o, &u);
+                       const double k = view.perspective() ? glm::dot(u, F) : 1.0;  // view depth per unit of ray
+                       const glm::dvec3 v(-glm::dot(u, view.right()), -glm::dot(u, view.up()), glm::dot(u, F));
+                       double acc[4] = {0, 0, 0, 0};
+                       seen.clear();
+                       for (const SphereCrossing& x : xs) {
+                         const glm::vec4& col = colors[x.id];
+                         const double a = col.a >= 1.f ? 1.0 : col.a > 0.f ? double(col.a) : 0.0;
+                         if (a == 0) continue;
+                         const bool opaque = a == 1;
+                         if (front_only || opaque) {  // only the sphere's first (visible) crossing
+                           if (std::find(seen.begin(), seen.end(), x.id) != seen.end()) continue;
+                           seen.push_back(x.id);
+                         }
+                         glm::dvec3 n = (o + (x.depth / k) * u - spheres.centres[x.id]) / spheres.radii[x.id];
+                         if (glm::dot(n, u) > 0) n = -n;  // facing the viewer
+                         const glm::dvec3 nv = glm::normalize(
+                             glm::dvec3(glm::dot(n, view.right()), glm::dot(n, view.up()), -glm::dot(n, F)));
+                         const glm::dvec3 rgb = shade(shading, glm::dvec3(col.r, col.g, col.b), nv, v);
+                         const double c[4] = {rgb.r * a, rgb.g * a, rgb.b * a, a};
+                         const double m = 1.0 - acc[3];
+                         for (int q = 0; q < 4; ++q) acc[q] += c[q] * m;
+                         if (*depth == std::numeric_limits<double>::infinity()) *depth = x.depth;
+                         if (opaque) break;
+                       }
+                       const double m = 1.0 - acc[3];
+                       for (int q = 0; q < 4; ++q) px[q] = float(acc[q] + background[q] * m);
+                       return *depth < std::numeric_limits<double>::infinity();
+                     });
 }
 
 }  // namespace zs

@@ -27,6 +27,18 @@ void TranslucentTile::opaque_background() {
   gather_live(Which::Translucent);
 }
 
+double* TranslucentTile::composite_layer(size_t p, const FragKey& k) {
+  double c[4];
+  color(p, k, c);
+  if (zfirst_[p] == INFINITY) zfirst_[p] = k.z;
+  double* a = &acc_[p * 4];
+  composite_under(a, c);
+  ++S_->composited;
+  ++layers_[p];
+  prev_[p] = k;
+  return a;
+}
+
 void TranslucentTile::peel() {
   const size_t n = size_t(w_) * h_;
   opaque_background();
@@ -49,15 +61,7 @@ void TranslucentTile::peel() {
     for (size_t p = 0; p < n; ++p) {
       if (cur_[p].z == INFINITY) continue;
       any = true;
-      double c[4];
-      color(p, cur_[p], c);
-      if (zfirst_[p] == INFINITY) zfirst_[p] = cur_[p].z;
-      double* a = &acc_[p * 4];
-      composite_under(a, c);
-      ++S_->composited;
-      ++layers_[p];
-      prev_[p] = cur_[p];
-      if (saturated(a, stop_)) {  // Eq. 4.2: this pixel takes no more layers
+      if (saturated(composite_layer(p, cur_[p]), stop_)) {  // Eq. 4.2: this pixel takes no more layers
         ++S_->pixels_stopped;
         set_gone(p, -INFINITY);
       }
@@ -103,14 +107,9 @@ void TranslucentTile::dual_peel() {
     for (size_t p = 0; p < n; ++p) {
       if (cur_[p].z == INFINITY) continue;
       any = true;
-      double c[4];
-      color(p, cur_[p], c);
-      if (zfirst_[p] == INFINITY) zfirst_[p] = cur_[p].z;
-      composite_under(&acc_[p * 4], c);
-      ++S_->composited;
-      ++layers_[p];
-      prev_[p] = cur_[p];
+      composite_layer(p, cur_[p]);
       if (!(mx_[p] == cur_[p])) {  // the farthest left goes over the back layers
+        double c[4];
         color(p, mx_[p], c);
         composite_over(&back_[p * 4], c);
         ++S_->composited;

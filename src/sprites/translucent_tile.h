@@ -94,6 +94,8 @@ class TranslucentTile {
   void set_now(size_t p, double z);
   void begin_pass();  // now = gone everywhere
 
+  // Composites layer fragment k under pixel p (peeling modes); its composite.
+  double* composite_layer(size_t p, const FragKey& k);
   // The fragment's premultiplied colour (shaded as the opaque renderer shades).
   void color(size_t p, const FragKey& k, double c[4]) const;
   double alpha(uint32_t id) const;
