@@ -61,7 +61,10 @@ void TranslucentTile::peel() {
     for (size_t p = 0; p < n; ++p) {
       if (cur_[p].z == INFINITY) continue;
       any = true;
-      if (saturated(composite_layer(p, cur_[p]), stop_)) {  // Eq. 4.2: this pixel takes no more layers
+      const double* a = composite_layer(p, cur_[p]);
+      if (opaque_now(a)) {
+        set_gone(p, -INFINITY);  // exact: nothing behind can change it
+      } else if (saturated(a, stop_)) {  // Eq. 4.2: this pixel takes no more layers
         ++S_->pixels_stopped;
         set_gone(p, -INFINITY);
       }

@@ -74,6 +74,8 @@ struct SphereRenderer::Impl {
   std::vector<uint64_t> bin_offset;  // tiles + 1
   std::vector<uint32_t> bin_ids;     // grid entries per tile, front-to-back cell order
   tbb::enumerable_thread_specific<TileState> states;
+  uint64_t kbuf_bytes = 0;
+  static constexpr uint64_t kMaxKbufBytes = uint64_t(512) << 20;
 
   Impl(const SphereSet& spheres, const std::vector<glm::vec4>& c, const SphereGrid& grid_, const SphereRenderSettings& settings,
        uint64_t extra_bytes)
@@ -178,6 +180,11 @@ struct SphereRenderer::Impl {
     shared += S.bin_entries * 4 + bin_offset.size() * 8;
     check(shared);
     S.shared_bytes = shared;
+    // What is left of the budget, per thread, for sorted's deeper k-buffer
+    // passes (TranslucentTile::sorted), at most kMaxKbufBytes: enough for a
+    // 64² tile 8192 fragments deep.
+    const uint64_t base_kbuf = uint64_t(rs.tile_size) * rs.tile_size * TranslucentTile::kSortedLayers * 16;
+    kbuf_bytes = std::max(base_kbuf, std::min(kMaxKbufBytes, budget > shared ? (budget - shared) / threads : 0));
     bin_ids.resize(S.bin_entries);
     std::vector<uint64_t> next(bin_offset.begin(), bin_offset.end() - 1);
     for (const auto& kq : key) {
@@ -227,7 +234,7 @@ struct SphereRenderer::Impl {
     SphereStats& S = ts.stats;
     if (rs.mode != SphereMode::Opaque) {
       if (!ts.translucent) ts.translucent = std::make_unique<TranslucentTile>();
-      const TranslucentFrame f{&s, &g, &colors, &rs, &view, cam};
+      const TranslucentFrame f{&s, &g, &colors, &rs, &view, cam, kbuf_bytes};
       return ts.translucent->render(f, bin_ids.data() + bin_offset[t], bin_offset[t + 1] - bin_offset[t], r, S);
     }
     const uint32_t w = r.width(), h = r.height();

@@ -74,6 +74,8 @@ void TranslucentTile::begin_pass() {
   ++S_->passes;
 }
 
+// The tile's spheres in bin order (nearest depth first); each is set up only
+// when a pass reaches it, so spheres a pass never reaches cost little.
 void TranslucentTile::gather_live(Which which) {
   const SphereGrid& g = *f_->g;
   live_.clear();
@@ -83,17 +85,36 @@ void TranslucentTile::gather_live(Which which) {
     if (al == 0) continue;  // (the renderer bins none)
     const bool opaque = al == 1;
     if ((which == Which::Opaque && !opaque) || (which == Which::Translucent && opaque)) continue;
-    const glm::dvec3 c = to_camera(*f_->view, g.centre[e]);
-    const double zmin = c.z - g.radius[e];
+    const double zmin = to_camera(*f_->view, g.centre[e]).z - g.radius[e];
     Live L;
     L.z_reject = zmin - 1e-9 * std::abs(zmin);  // no computed depth of the sphere is nearer
-    L.su = setup_sphere(f_->cam, c.x, c.y, c.z, g.radius[e]);
-    if (!sphere_pixel_range(L.su, vp_, &L.i0, &L.i1, &L.j0, &L.j1)) continue;
-    L.i0 -= vp_.x0, L.i1 -= vp_.x0, L.j0 -= vp_.y0, L.j1 -= vp_.y0;
+    L.e = e;
     L.id = id;
     L.opaque = opaque;
+    L.ready = false;
     live_.push_back(L);
   }
+}
+
+bool TranslucentTile::set_up(Live& L) const {
+  const SphereGrid& g = *f_->g;
+  const glm::dvec3 c = to_camera(*f_->view, g.centre[L.e]);
+  L.su = setup_sphere(f_->cam, c.x, c.y, c.z, g.radius[L.e]);
+  if (!sphere_pixel_range(L.su, vp_, &L.i0, &L.i1, &L.j0, &L.j1)) return false;
+  L.i0 -= vp_.x0, L.i1 -= vp_.x0, L.j0 -= vp_.y0, L.j1 -= vp_.y0;
+  L.ready = true;
+  return true;
+}
+
+double TranslucentTile::now_tile_max() {
+  const int bw = int((w_ + kTileBlock - 1) / kTileBlock), bh = int((h_ + kTileBlock - 1) / kTileBlock);
+  double m = -INFINITY;
+  for (int by = 0; by < bh; ++by)
+    for (int bx = 0; bx < bw; ++bx) {
+      m = std::max(m, now_max_.get(now_.data(), bx, by));
+      if (m == INFINITY) return m;
+    }
+  return m;
 }
 
 const float* TranslucentTile::render(const TranslucentFrame& f, const uint32_t* bin, uint64_t count,
@@ -124,39 +145,62 @@ const float* TranslucentTile::render(const TranslucentFrame& f, const uint32_t* 
 // ---- sorted ----
 
 void TranslucentTile::sorted() {
-  constexpr uint32_t K = kSortedLayers;
   const size_t n = size_t(w_) * h_;
-  kbuf_.resize(n * K);
-  kcount_.assign(n, 0);
+  kcount_.resize(n);
+  kslot_.resize(n);
+  kcut_.resize(n);
   gather_live(Which::All);
-  while (!live_.empty()) {
+  uint64_t K = kSortedLayers;
+  for (bool first = true; !live_.empty(); first = false) {
+    // Slots for the open pixels only; K grows once the first pass has
+    // shown which pixels are deep.
+    size_t open = 0;
+    for (size_t p = 0; p < n; ++p)
+      if (gone_[p] != -INFINITY) kslot_[p] = uint32_t(open++);
+    if (open == 0) break;
+    if (!first) {
+      const uint64_t fit = f_->kbuf_bytes / (uint64_t(open) * sizeof(FragKey));
+      K = std::max<uint64_t>(K, std::min<uint64_t>({K * 64, fit, uint64_t(1) << 24}));
+    }
+    kbuf_.resize(open * K);
     begin_pass();
     std::fill(kcount_.begin(), kcount_.end(), 0);
-    // The K nearest fragments behind the last one composited; an opaque
-    // fragment also bounds the pixel for good.
+    std::fill(kcut_.begin(), kcut_.end(), kKeyMax);
+    // Per open pixel, every fragment behind the last one composited and in
+    // front of its cut (+inf at first). A full buffer keeps its nearest half
+    // (nth_element: sequential, amortised O(1) per fragment, unlike a heap's
+    // cache misses) and the cut moves to the first fragment dropped; the
+    // cut's depth is the pass's `now`. An opaque fragment also bounds the
+    // pixel for good.
     pass([&](size_t p, const FragKey& k, bool opaque) {
       if (!(prev_[p] < k) || k.z > gone_[p]) return false;
-      if (opaque) set_gone(p, k.z);  // nothing behind it counts, in any pass
-      FragKey* b = &kbuf_[p * K];
+      if (!(k < kcut_[p])) return true;  // for a later pass
+      if (opaque) set_gone(p, k.z);       // nothing behind it counts, in any pass
+      FragKey* b = &kbuf_[kslot_[p] * K];
       uint32_t c = kcount_[p];
       if (c == K) {
-        if (!(k < b[K - 1])) return true;  // for a later pass
-        c = K - 1;
+        const uint32_t half = uint32_t(K / 2);
+        std::nth_element(b, b + half, b + K);
+        kcut_[p] = b[half];
+        set_now(p, b[half].z);
+        c = half;
+        if (!(k < kcut_[p])) {
+          kcount_[p] = c;
+          return true;
+        }
       }
-      uint32_t i = c;
-      for (; i > 0 && k < b[i - 1]; --i) b[i] = b[i - 1];
-      b[i] = k;
-      kcount_[p] = uint8_t(c + 1);
-      if (c + 1 == K) set_now(p, b[K - 1].z);
+      b[c] = k;
+      kcount_[p] = c + 1;
       return true;
     });
     bool more = false;
     for (size_t p = 0; p < n; ++p) {
       if (gone_[p] == -INFINITY) continue;
       const uint32_t c = kcount_[p];
-      const FragKey* b = &kbuf_[p * K];
+      FragKey* b = &kbuf_[kslot_[p] * K];
+      std::sort(b, b + c);
       double* a = &acc_[p * 4];
-      bool done = c < K;  // it had no more fragments than these
+      bool done = kcut_[p] == kKeyMax;  // it had no more fragments than these
       for (uint32_t i = 0; i < c; ++i) {
         double col[4];
         color(p, b[i], col);
@@ -164,7 +208,7 @@ void TranslucentTile::sorted() {
         composite_under(a, col);
         ++S_->composited;
         prev_[p] = b[i];
-        if (col[3] == 1.0) {
+        if (col[3] == 1.0 || opaque_now(a)) {
           done = true;
           break;
         }

@@ -5,12 +5,14 @@
 // that surface, and alpha. A sphere of alpha 1 is opaque: its visible
 // surface ends the pixel. Alpha 0 draws nothing.
 //
-// - sorted: exact. Passes over the tile's spheres, each keeping per pixel
-//   the kSortedLayers nearest fragments behind those composited so far (a
-//   k-buffer), then compositing them in order; a pixel leaves the passes
-//   once opaque, once 1 − A <= t/510 with tolerance t (Eq. 4.2), or once it
-//   had fewer fragments left than the buffer holds. Memory: kSortedLayers
-//   fragments per tile pixel and thread, whatever the depth complexity.
+// - sorted: exact. Passes over the tile's spheres, each keeping per open
+//   pixel at most K nearest fragments behind those composited so far (a
+//   k-buffer that drops its far half when full), then compositing them in
+//   order; a pixel leaves the passes once opaque, once 1 − A <= t/510 with
+//   tolerance t (Eq. 4.2), or once none was dropped. K starts at
+//   kSortedLayers (most pixels of a shallow set end in that pass) and grows
+//   64-fold per pass within the thread's share of the memory budget, so a
+//   pixel thousands of fragments deep takes three passes, not hundreds.
 // - peel: the seed's front depth peeling: the opaque spheres once into a
 //   background (depth and colour), then one pass over the translucent
 //   spheres per layer, each keeping per pixel the nearest fragment behind the
@@ -54,6 +56,7 @@ struct TranslucentFrame {
   const SphereRenderSettings* rs;
   const View* view;
   CameraPlane cam;
+  uint64_t kbuf_bytes;  // sorted: the most a thread's k-buffer may hold
 };
 
 // A thread's scratch, reused from tile to tile (no allocation per fragment).
@@ -68,12 +71,12 @@ class TranslucentTile {
   static constexpr uint32_t kSortedLayers = 16;
   static constexpr uint64_t kPixelBytes = kSortedLayers * 16 + 160;
 
-  struct Live {  // a translucent sphere that may still give a layer
-    SphereSetup su;
+  struct Live {  // a sphere that may still give a layer
+    SphereSetup su;      // set up when a pass first reaches it
     int i0, i1, j0, j1;  // pixel range, tile coordinates
     double z_reject;     // no computed depth of it is nearer
-    uint32_t id;
-    bool opaque;
+    uint32_t e, id;      // grid entry, sphere index
+    bool opaque, ready;
   };
 
  private:
@@ -93,6 +96,8 @@ class TranslucentTile {
   void set_gone(size_t p, double z);
   void set_now(size_t p, double z);
   void begin_pass();  // now = gone everywhere
+  bool set_up(Live& L) const;  // false: it covers no pixel centre of the tile
+  double now_tile_max();       // the farthest `now` of the tile
 
   // Composites layer fragment k under pixel p (peeling modes); its composite.
   double* composite_layer(size_t p, const FragKey& k);
@@ -117,12 +122,14 @@ class TranslucentTile {
   std::vector<double> now_;     // ... cannot count in this pass
   BlockMax gone_max_, now_max_;
   std::vector<Live> live_;
+  std::vector<double> zsuf_;    // suffix minima of live_'s z_reject
   std::vector<double> zlow_;
   FaceSpans spans_;
   std::vector<FragKey> prev_;   // the last fragment composited
   // sorted
-  std::vector<FragKey> kbuf_;   // kSortedLayers per pixel, ascending
-  std::vector<uint8_t> kcount_;
+  std::vector<FragKey> kbuf_;   // K per open pixel, unordered
+  std::vector<FragKey> kcut_;   // per pixel: this pass keeps only fragments in front of it
+  std::vector<uint32_t> kcount_, kslot_;
   // peeling
   std::vector<FragKey> bg_, cur_, far_, mx_;
   std::vector<double> back_;  // dual peeling's back composite, 4 per pixel
@@ -133,9 +140,23 @@ class TranslucentTile {
 template <class Fn>
 void TranslucentTile::pass(Fn&& fn) {
   const PixelThresholds th{gone_.data(), now_.data(), &gone_max_, &now_max_};
+  // live_ is in nearest-depth order (the bin's), so once every sphere left
+  // lies behind every pixel's `now`, the pass has nothing left to find:
+  // the rest is kept, untouched, for later passes. Checked every
+  // kBreakEvery spheres against the suffix minima of z_reject.
+  constexpr size_t kBreakEvery = 64;
+  const size_t n = live_.size();
+  zsuf_.resize(n + 1);
+  zsuf_[n] = INFINITY;
+  for (size_t q = n; q-- > 0;) zsuf_[q] = std::min(zsuf_[q + 1], live_[q].z_reject);
   size_t keep = 0;
-  for (size_t q = 0; q < live_.size(); ++q) {
-    const Live& L = live_[q];
+  for (size_t q = 0; q < n; ++q) {
+    if (q % kBreakEvery == 0 && zsuf_[q] > now_tile_max()) {
+      for (; q < n; ++q) live_[keep++] = live_[q];
+      break;
+    }
+    Live& L = live_[q];
+    if (!L.ready && !set_up(L)) continue;
     bool useful = false;
     ++S_->spheres_scanned;
     const bool deferred = for_each_sphere_hit(L.su, vp_, L.i0, L.i1, L.j0, L.j1, L.z_reject, th, zlow_, spans_, *S_,
