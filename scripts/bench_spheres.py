@@ -449,6 +449,9 @@ def parser():
                     help="--translucent's error sweep over tolerance and layer cap (default full; --quick small)")
     ap.add_argument("--render-timeout", type=float, default=900,
                     help="--translucent: s per zsweep render or reference (recorded as a timeout)")
+    ap.add_argument("--exact-timeout", type=float, default=None,
+                    help="--translucent: s for the exact renders (sorted t 0, the Embree reference), which "
+                         "every error row needs (default --render-timeout)")
     ap.add_argument("--vtk-worker", help=argparse.SUPPRESS)
     ap.add_argument("--vtk-translucent", action="store_true", help=argparse.SUPPRESS)
     return ap

@@ -24,7 +24,8 @@ rows are then means over the frames):
   per set (bench_spheres.vtk_worker), a warm-up frame first;
 - Embree (--embree): `zsweep reference` on the sorted-exact scene (it
   composites every crossing; it takes the scene's camera), one thread.
-Renders are bounded by --render-timeout; a peel (dual_peel) row whose
+Renders are bounded by --render-timeout (the exact ones, which every error
+row needs, by --exact-timeout); a peel (dual_peel) row whose
 smaller-or-equal cap and larger-or-equal t timed out is skipped, not run.
 """
 import concurrent.futures
@@ -205,6 +206,10 @@ def sweep_variants(kind):
     return vs + [variant("weighted", 0, 0)]
 
 
+def exact_timeout(a):
+    return a.exact_timeout or a.render_timeout
+
+
 def skipped_by(v, timeouts):
     """A timed-out run that does less work than v (peel: t >= v's, cap
     <= v's, 0 meaning none; dual_peel: cap <= v's), or None."""
@@ -310,7 +315,9 @@ class SetRun:
         if w:
             r = {"exit_status": f"skipped: {w['mode']} t={w['t']} cap={w['cap']} timed out"}
         else:
-            r = render(sp, image, self.a.memory_budget, self.repeat, self.a.render_timeout)
+            exact = v["mode"] == "sorted" and v["t"] == 0
+            r = render(sp, image, self.a.memory_budget, self.repeat,
+                       exact_timeout(self.a) if exact else self.a.render_timeout)
             if r.get("timeout") and fname == "auto":
                 self.timeouts.append(v)
         r.update(scene=sp, image=image)
@@ -378,7 +385,7 @@ def run_set(a, name, count, size, cams, img, scenes, vtk_rows, emb_rows):
     if a.embree:
         ref = S.done[("auto", key(variant("sorted", 0, 0)))]
         out = os.path.join(img, f"{name}-auto-embree.exr")
-        emb = run_reference(ref["scene"], out, a.render_timeout)
+        emb = run_reference(ref["scene"], out, exact_timeout(a))
         emb.update(set=name, spheres=count, size=size, frame="auto", renderer="embree",
                    label="Embree reference (every crossing)", surfaces="both",
                    exit_status=emb.get("error", 0), ms=emb.get("trace_ms"), setup_ms=emb.get("build_ms"))

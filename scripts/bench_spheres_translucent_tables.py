@@ -77,6 +77,8 @@ def summarize(name, count, size, mode_rows, err_rows, astats, vtk_rows, emb, bud
 
 
 def fmt(x, d=1):
+    if isinstance(x, float) and x != x:  # nan: not measured (a timeout)
+        return "–"
     return bs.fmt(x, d) if isnum(x) else ("–" if x in (None, "") else str(x))
 
 
@@ -91,7 +93,8 @@ def doc_lines(a, summary, mode_rows, err_rows, vtk_rows, emb_rows, size, cams, w
          f"`{cmd.strip()}` ({wall / 60:.1f} min): {size}², perspective, zsweep reference's automatic camera"
          + (f" and {nfr - 1} orbit frames (Table 5 rows: means over the {nfr} frames)" if nfr > 1 else "") +
          f", one thread, `render --frames {a.repeat or 1}`, memory budget {a.memory_budget:g} MiB, "
-         f"render timeout {a.render_timeout:g} s.", "",
+         f"render timeout {a.render_timeout:g} s"
+         + (f" (exact renders and the Embree reference: {a.exact_timeout:g} s)" if a.exact_timeout else "") + ".", "",
          "Table 5 analogue (t: tolerance in 8-bit levels, cap: `max_layers`; sorted takes no cap; passes over "
          "the spheres, summed over tiles; ms/layer = "
          "ms / layers max; layers are counted by the peeling modes only; fragments composited: sorted and "
