@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "cli/json_out.h"
 #include "cli/render_mpi.h"
+#include "cli/render_surfaces.h"
 #include "cli/scene_args.h"
 #include "image/tile_writer.h"
 #include "mesh/topology.h"
@@ -275,6 +276,11 @@ void run(const SceneArgs& a, const std::string& out_path, const std::string& sta
     if (!stats_path.empty()) AtomicFile(stats_path).check_writable();
     return run_spheres(in, out_path, stats_path, frames, compression, no_culling);
   }
+  if (in.scene.kind == SceneKind::Surfaces) {
+    if (!stats_path.empty()) AtomicFile(stats_path).check_writable();
+    if (no_culling) in.scene.surfaces.cull_back = in.scene.surfaces.cull_view = false;
+    return run_surfaces(in, out_path, stats_path, frames, compression);
+  }
   if (!stats_path.empty()) AtomicFile(stats_path).check_writable();  // not after the render
   if (!render_mpi_enabled() || render_mpi_rank() == 0) warn_nonfinite(in);
   RenderSettings& rs = in.scene.settings;
@@ -352,7 +358,8 @@ void add_render_command(CLI::App& app) {
                   "write), zips, piz, none; EXR lossy: pxr24, b44, b44a, dwaa, dwab. TIFF (lossless): zip "
                   "(default), lzw, packbits, none");
   cmd->add_flag("--no-culling", *no_culling,
-                 "Sphere scenes: draw every sphere, without the (lossless) visibility culling");
+                 "Sphere scenes: draw every sphere, without the (lossless) visibility culling; surface scenes: no "
+                 "back-face or view-volume culling");
   add_render_mpi_options(*cmd);  // --mpi, --mpi-schedule (src/cli/render_mpi.h)
   cmd->callback([a, out, stats, frames, compression, no_culling] { run(*a, *out, *stats, *frames, *compression, *no_culling); });
 }

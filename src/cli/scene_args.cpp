@@ -60,6 +60,8 @@ SceneInput SceneArgs::load() const {
   if (tile_size) rs.tile_size = tile_size;
   rs.threads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
   rs.progress = true;
+  // Surfaces are framed in perspective unless told otherwise.
+  if (projection.empty() && in.scene.kind == SceneKind::Surfaces) p = Projection::Perspective;
   finish_scene(in, p);
   return in;
 }

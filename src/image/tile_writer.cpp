@@ -181,7 +181,8 @@ struct ImageTileWriter::Impl {
   uint64_t held = 0, peak = 0;
   bool committed = false;
 
-  Impl(const std::string& p, const TileGrid& g, const std::string& compression) : path(p), grid(g), out(p) {
+  Impl(const std::string& p, const TileGrid& g, const std::string& compression, const std::vector<std::string>& names)
+      : path(p), grid(g), out(p) {
     // OpenEXR compresses on a pool of one thread per core by default, next to
     // the render's own threads: with --threads 1 the file would quietly use
     // every core. Compress in the writing thread instead (the sink relay
@@ -194,9 +195,12 @@ struct ImageTileWriter::Impl {
     const bool is_float = layout.is_float, tiled = layout.tiled;
     OIIO::ImageSpec spec(int(grid.width), int(grid.height), int(layout.channels),
                          is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-    if (layout.channels == 5) {
-      // The view depth of the nearest surface, as EXR's depth channel.
+    if (layout.channels >= 5) {
+      // The view depth of the nearest surface, as EXR's depth channel, then
+      // the renderer's own channels (surfaces: lit0, lit1, ...).
       spec.channelnames = {"R", "G", "B", "A", "Z"};
+      for (uint32_t c = 5; c < layout.channels; ++c)
+        spec.channelnames.push_back(c < names.size() ? names[c] : "C" + std::to_string(c));
       spec.z_channel = 4;
     }
     spec.attribute("oiio:ColorSpace", "Linear");
@@ -342,8 +346,9 @@ struct ImageTileWriter::Impl {
   }
 };
 
-ImageTileWriter::ImageTileWriter(const std::string& path, const TileGrid& grid, const std::string& compression)
-    : impl_(std::make_unique<Impl>(path, grid, compression)) {}
+ImageTileWriter::ImageTileWriter(const std::string& path, const TileGrid& grid, const std::string& compression,
+                                 const std::vector<std::string>& channel_names)
+    : impl_(std::make_unique<Impl>(path, grid, compression, channel_names)) {}
 
 ImageTileWriter::~ImageTileWriter() = default;
 

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "raster/tile_sink.h"
 
@@ -26,7 +27,10 @@ class ImageTileWriter : public TileSink {
   // Opens the output (a temporary beside `path`) for an image cut as `grid`,
   // with `compression` for EXR/TIFF (output_compression, image.h; "" = our
   // default). Throws std::runtime_error naming the file.
-  ImageTileWriter(const std::string& path, const TileGrid& grid, const std::string& compression = "");
+  // `channel_names`: the float formats' names of channels past Z (index 5
+  // on; the first five are always R, G, B, A, Z).
+  ImageTileWriter(const std::string& path, const TileGrid& grid, const std::string& compression = "",
+                  const std::vector<std::string>& channel_names = {});
   ~ImageTileWriter() override;
   ImageTileWriter(const ImageTileWriter&) = delete;
   ImageTileWriter& operator=(const ImageTileWriter&) = delete;

@@ -13,46 +13,15 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "scene/scene_json.h"
+
 namespace zs {
 
 namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
-
-struct Ctx {
-  std::string name, base;
-  [[noreturn]] void fail(const std::string& what) const { throw std::runtime_error(name + ": " + what); }
-  std::string resolve(const std::string& p) const {
-    if (p.empty() || fs::path(p).is_absolute() || base.empty()) return p;
-    return (fs::path(base) / p).lexically_normal().string();
-  }
-};
-
-void check_keys(const Ctx& c, const json& obj, const std::string& where, std::initializer_list<const char*> allowed) {
-  if (!obj.is_object()) c.fail(where + " must be an object");
-  for (auto it = obj.begin(); it != obj.end(); ++it) {
-    bool ok = false;
-    for (const char* a : allowed) ok = ok || it.key() == a;
-    if (!ok) {
-      std::string list;
-      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
-      c.fail("unknown key '" + where + "." + it.key() + "' (allowed: " + list + ")");
-    }
-  }
-}
-
-double num(const Ctx& c, const json& v, const std::string& where) {
-  if (!v.is_number()) c.fail(where + " must be a number");
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) c.fail(where + " must be finite");
-  return d;
-}
-
-glm::dvec3 vec3(const Ctx& c, const json& v, const std::string& where) {
-  if (!v.is_array() || v.size() != 3) c.fail(where + " must be [x, y, z]");
-  return {num(c, v[0], where + "[0]"), num(c, v[1], where + "[1]"), num(c, v[2], where + "[2]")};
-}
+using namespace scene_json;
 
 std::vector<ColorPoint> paraview_points(const Ctx& c, const json& preset, const std::string& where) {
   const json* p = &preset;
@@ -107,14 +76,6 @@ std::vector<OpacityPoint> opacities(const Ctx& c, const json& v) {
     out.push_back({num(c, v[i][0], w), num(c, v[i][1], w)});
   }
   return out;
-}
-
-double memory_budget_mb(const Ctx& c, const json& v) {
-  const double mb = num(c, v, "render.memory_budget_mb");
-  // Up to 2^44 MiB (2^64 bytes): beyond, the byte count is not representable
-  // (a fuzzing finding: the conversion was undefined behaviour).
-  if (!(mb > 0 && mb < 17592186044416.0)) c.fail("render.memory_budget_mb must be positive and below 2^44");
-  return mb;
 }
 
 // `spheres`, `shading` and the sphere `render` keys (docs/spheres.md).
@@ -211,20 +172,29 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     // for a double (1e999) is nlohmann's out_of_range. One line either way.
     c.fail(std::string("invalid JSON: ") + e.what());
   }
-  check_keys(c, j, "scene", {"mesh", "spheres", "image", "camera", "transfer_function", "shading", "render"});
+  check_keys(c, j, "scene", {"mesh", "spheres", "surfaces", "image", "camera", "transfer_function", "shading", "render",
+                             "ground", "lights", "shadows"});
   Scene s;
   RenderSettings& rs = s.settings;
 
-  if (j.contains("mesh") && j.contains("spheres")) c.fail("a scene has 'mesh' or 'spheres', not both");
-  if (!j.contains("mesh") && !j.contains("spheres")) c.fail("missing 'mesh' (volume) or 'spheres'");
-  if (j.contains("spheres")) {
+  const int kinds = int(j.contains("mesh")) + int(j.contains("spheres")) + int(j.contains("surfaces"));
+  if (kinds > 1) c.fail("a scene has one of 'mesh', 'spheres' or 'surfaces'");
+  if (kinds == 0) c.fail("missing 'mesh' (volume), 'spheres' or 'surfaces'");
+  if (!j.contains("surfaces"))
+    for (const char* k : {"ground", "lights", "shadows"})
+      if (j.contains(k)) c.fail(std::string("'") + k + "' is for surface scenes");
+  if (j.contains("surfaces")) {
+    s.kind = SceneKind::Surfaces;
+    if (j.contains("transfer_function")) c.fail("'transfer_function' is not for surface scenes");
+    parse_surface_blocks(c, j, &s);
+  } else if (j.contains("spheres")) {
     s.kind = SceneKind::Spheres;
     parse_spheres_block(c, j, &s);
   } else if (j.contains("shading")) {
     c.fail("'shading' is for sphere scenes");
   }
   const json& m = j.contains("mesh") ? j["mesh"] : json("");
-  if (s.kind == SceneKind::Spheres) {
+  if (s.kind != SceneKind::Volume) {
     // parsed above
   } else if (m.is_string()) {
     s.mesh_path = c.resolve(m.get<std::string>());

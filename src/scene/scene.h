@@ -6,14 +6,16 @@
 
 #include "mesh/io/mesh_io.h"
 #include "scene/scene_defaults.h"
+#include "scene/surface_scene.h"
 #include "spheres/sphere_colors.h"
 #include "sprites/sphere_settings.h"
 #include "volume/render_settings.h"
 
 namespace zs {
 
-// Which renderer a scene is for: its top-level `mesh` or `spheres` key.
-enum class SceneKind { Volume, Spheres };
+// Which renderer a scene is for: its top-level `mesh`, `spheres` or
+// `surfaces` key.
+enum class SceneKind { Volume, Spheres, Surfaces };
 
 // The sphere renderer's part of a scene (docs/spheres.md): the set, how it is
 // coloured, lit and rendered. Image, camera, transfer function and memory
@@ -40,6 +42,7 @@ struct Scene {
   std::string mesh_path;  // resolved against the scene's directory
   ReadOptions mesh_options;
   SphereScene spheres;    // kind == Spheres
+  SurfaceScene surfaces;  // kind == Surfaces
   RenderSettings settings;
   bool has_camera = false;             // false: frame the mesh automatically
   bool has_transfer_function = false;  // false: default ramp over the scalar range

@@ -7,7 +7,9 @@
 #include <stdexcept>
 
 #include "mesh/default_mesh.h"
+#include "scene/surface_input.h"
 #include "spheres/sphere_io.h"
+#include "surfaces/io/surface_reader.h"
 
 namespace zs {
 
@@ -37,6 +39,10 @@ SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_op
   } else if (is_sphere_file(input)) {
     in.scene.kind = SceneKind::Spheres;
     in.scene.spheres.path = input;
+  } else if (is_surface_file(input)) {
+    in.scene.kind = SceneKind::Surfaces;
+    in.scene.surfaces.surfaces.push_back({input});
+    in.scene.surfaces.ground = in.scene.surfaces.ground_auto_height = true;
   } else {
     in.scene.mesh_path = input;
     in.scene.mesh_options = mesh_options;
@@ -49,6 +55,11 @@ SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_op
     in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return in;
   }
+  if (in.scene.kind == SceneKind::Surfaces) {
+    load_surfaces(in);
+    in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return in;
+  }
   in.mesh = in.scene.mesh_path.empty() ? default_mesh() : read_mesh(in.scene.mesh_path, in.scene.mesh_options);
   in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (in.mesh.num_tets() == 0) throw std::runtime_error(in.scene.mesh_path + ": mesh has no tets");
@@ -57,6 +68,27 @@ SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_op
 
 void finish_scene(SceneInput& in, Projection auto_projection) {
   RenderSettings& rs = in.scene.settings;
+  if (in.scene.kind == SceneKind::Surfaces) {
+    if (in.scene.has_camera) return;
+    // Framed on the surfaces (not the ground: it is only there to receive).
+    const TriangleMesh& only = in.surface;
+    const uint32_t ground = uint32_t(in.scene.surfaces.surfaces.size());
+    Bounds b;
+    for (size_t t = 0; t < only.tris.size(); ++t)
+      if (only.surface[t] != ground)
+        for (uint32_t v : only.tris[t]) {
+          const glm::dvec3& p = only.points[v];
+          b.lo = b.empty ? p : glm::min(b.lo, p);
+          b.hi = b.empty ? p : glm::max(b.hi, p);
+          b.empty = false;
+        }
+    try {
+      rs.camera = frame_surfaces(b, auto_projection, rs.width, rs.height);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(in.scene.surfaces.surfaces[0].path + ": " + e.what());
+    }
+    return;
+  }
   if (in.scene.kind == SceneKind::Spheres) {
     // Framed on the box of the drawable spheres, radii included.
     Bounds b;

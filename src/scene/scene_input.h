@@ -9,6 +9,7 @@
 #include "mesh/tet_mesh.h"
 #include "scene/scene.h"
 #include "spheres/sphere_set.h"
+#include "surfaces/triangle_mesh.h"
 
 namespace zs {
 
@@ -19,11 +20,14 @@ struct SceneInput {
   Scene scene;
   TetMesh mesh;        // volume scenes
   SphereSet spheres;   // sphere scenes (radii already scaled by spheres.radius_scale)
+  TriangleMesh surface;  // surface scenes: every surface, transformed, then the ground; point normals set
+  uint64_t surface_polygons_split = 0, surface_elements_dropped = 0;
   double ms_load = 0;
 };
 
-// Reads the scene (if any) and its mesh or sphere set (a bare .pdb/.sph/.sphb
-// file is a sphere scene with defaults). Throws std::runtime_error naming the
+// Reads the scene (if any) and its mesh, sphere set or surfaces (a bare
+// .pdb/.sph/.sphb file is a sphere scene with defaults; a bare .obj/.ply/.stl
+// or OFF surface a surface scene over a ground plane with one light). Throws std::runtime_error naming the
 // file. Camera and transfer function are filled in by finish_scene, after the
 // caller has applied its overrides (the automatic camera depends on the size).
 SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options);

@@ -1,0 +1,246 @@
+#include "shadows/shadow_map.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <tbb/enumerable_thread_specific.h>
+
+#include "raster/depth_buffer.h"
+#include "raster/tile_loop.h"
+#include "raster/triangle_bins.h"
+#include "raster/zbuffer_tile.h"
+#include "shadows/multi_depth.h"
+#include "surfaces/triangle_projection.h"
+
+namespace zs {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// A unit vector perpendicular to f: the world axis least aligned with it,
+// crossed (deterministic, so maps never depend on anything but the light).
+glm::dvec3 perpendicular(const glm::dvec3& f) {
+  const glm::dvec3 a = std::abs(f.x) <= std::abs(f.y) && std::abs(f.x) <= std::abs(f.z) ? glm::dvec3(1, 0, 0)
+                       : std::abs(f.y) <= std::abs(f.z)                                 ? glm::dvec3(0, 1, 0)
+                                                                                        : glm::dvec3(0, 0, 1);
+  return glm::normalize(glm::cross(f, a));
+}
+
+// Texels kept free around the receivers' square, so the widest kernel and
+// the 3×3 neighbourhood never clamp at a visible point.
+constexpr double kPadTexels = 4;
+
+// The PCF box: first offset (relative to the base texel) and width. Odd
+// kernels centre on the texel holding p (base = round), even ones on the
+// texel corner nearest p (base = floor), so every kernel is centred on p.
+struct Kernel {
+  int first, width;
+  bool odd;
+};
+Kernel kernel_of(uint32_t k) {
+  switch (k) {
+    case 4: return {0, 2, false};
+    case 9: return {-1, 3, true};
+    case 16: return {-1, 4, false};
+    default: return {0, 1, true};
+  }
+}
+
+// How far beyond p's own texel the test reads (R of shadow_map.h).
+double reach_texels(const ShadowSettings& s) {
+  const double pcf = s.pcf == 16 ? 2 : s.pcf == 1 ? 0 : 1;
+  const bool near_depths = s.depths >= 3 || (s.depths == 2 && s.select == DepthSelect::Min);
+  return pcf + (near_depths ? 1 : 0);
+}
+
+}  // namespace
+
+void LightFit::add(const glm::dvec3& p) {
+  const double a = glm::dot(p, r), b = glm::dot(p, u);
+  lo_r = std::min(lo_r, a);
+  hi_r = std::max(hi_r, a);
+  lo_u = std::min(lo_u, b);
+  hi_u = std::max(hi_u, b);
+}
+
+LightFit start_fit(const Light& l) {
+  LightFit fit;
+  fit.f = glm::normalize(l.type == LightType::Directional ? l.direction : l.target - l.position);
+  fit.r = perpendicular(fit.f);
+  fit.u = glm::cross(fit.r, fit.f);
+  return fit;
+}
+
+uint64_t shadow_map_bytes(const ShadowSettings& s) {
+  // The map while rendering (float) plus the n-SM.
+  return uint64_t(s.map_size) * s.map_size * sizeof(float) * (1 + s.depths);
+}
+
+ShadowMap ShadowMap::from_depths(const Light& light, const Camera& frame, uint32_t size, std::vector<float> depths,
+                                 const ShadowSettings& s) {
+  if (depths.size() != size_t(size) * size) throw std::invalid_argument("ShadowMap::from_depths: size mismatch");
+  ShadowMap m;
+  m.light_ = light;
+  m.s_ = s;
+  m.size_ = size;
+  m.view_ = std::make_shared<View>(frame, size, size);
+  m.texel_ = frame.projection == Projection::Orthographic ? frame.height / size
+                                                           : 2 * std::tan(frame.fov_y * M_PI / 360.0) / size;
+  m.finish(std::move(depths));
+  return m;
+}
+
+void ShadowMap::finish(std::vector<float> depths) {
+  n_ = std::clamp<uint32_t>(s_.depths, 1, kMaxDepths);
+  levels_ = n_ * std::max<uint32_t>(1, s_.pcf);
+  reach_ = 1 + reach_texels(s_);
+  if (n_ == 1) {
+    md_ = std::move(depths);
+    return;
+  }
+  md_.assign(size_t(size_) * size_ * n_, 0.f);
+  build_multi_depth(depths.data(), size_, n_, s_.select, md_.data());
+}
+
+ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, const LightFit& fit0, const Bounds& scene,
+                           const ShadowSettings& s, int threads, ShadowMapStats* stats) {
+  ShadowMapStats st;
+  const uint32_t D = s.map_size;
+  const double diag = std::max(scene.empty ? 1.0 : scene.diagonal(), 1e-300);
+  Camera cam;
+  double z_near = 0;
+  const LightFit basis = start_fit(light);
+  if (light.type == LightType::Directional) {
+    LightFit fit = fit0;
+    fit.r = basis.r;
+    fit.u = basis.u;
+    fit.f = basis.f;
+    if (fit.empty()) {  // nothing in view: any square will do
+      for (int c = 0; c < 8; ++c)
+        fit.add({c & 1 ? scene.hi.x : scene.lo.x, c & 2 ? scene.hi.y : scene.lo.y, c & 4 ? scene.hi.z : scene.lo.z});
+    }
+    double side = std::max({fit.hi_r - fit.lo_r, fit.hi_u - fit.lo_u, 1e-12 * diag});
+    side *= D / std::max(1.0, D - 2 * kPadTexels);
+    // The eye plane behind every caster along the light direction.
+    double lo_f = INFINITY;
+    for (int c = 0; c < 8; ++c)
+      lo_f = std::min(lo_f, glm::dot(glm::dvec3(c & 1 ? scene.hi.x : scene.lo.x, c & 2 ? scene.hi.y : scene.lo.y,
+                                                c & 4 ? scene.hi.z : scene.lo.z),
+                                     basis.f));
+    cam.projection = Projection::Orthographic;
+    cam.eye = basis.r * (0.5 * (fit.lo_r + fit.hi_r)) + basis.u * (0.5 * (fit.lo_u + fit.hi_u)) +
+              basis.f * (lo_f - 0.01 * diag);
+    cam.target = cam.eye + basis.f;
+    cam.up = basis.u;
+    cam.height = side;
+    z_near = 0;
+  } else {
+    cam.projection = Projection::Perspective;
+    cam.eye = light.position;
+    cam.target = light.target;
+    cam.up = basis.u;
+    cam.fov_y = light.fov_deg;
+    z_near = 1e-6 * (diag + glm::length(light.position - scene.centre()));
+  }
+  ShadowMap m;
+  m.light_ = light;
+  m.s_ = s;
+  m.size_ = D;
+  m.view_ = std::make_shared<View>(cam, D, D);
+  m.texel_ = light.type == LightType::Directional ? cam.height / D : 2 * std::tan(cam.fov_y * M_PI / 360.0) / D;
+
+  auto t0 = Clock::now();
+  ProjectedTriangles pt;
+  ProjectCounts pc;
+  project_triangles(casters, *m.view_, {false, true, z_near}, &pt, &pc);
+  const TileGrid grid{D, D, 64, 1};
+  TriangleBins bins;
+  bin_triangles(grid, pt.verts, pt.corners, &bins);
+  st.ms_project = ms_since(t0);
+  st.casters = pt.corners.size();
+
+  t0 = Clock::now();
+  std::vector<float> depths(size_t(D) * D, INFINITY);
+  struct Tile {
+    DepthBuffer db;
+    ZBufferScratch scratch;
+    ZBufferCounts counts;
+    std::vector<float> out;
+  };
+  tbb::enumerable_thread_specific<Tile> tiles;
+  struct Copy : TileSink {
+    std::vector<float>* d;
+    uint32_t D;
+    void tile(const TileRect& r, const float* px) override {
+      for (uint32_t y = r.y0; y < r.y1; ++y)
+        std::memcpy(d->data() + size_t(y) * D + r.x0, px + size_t(y - r.y0) * r.width(), r.width() * sizeof(float));
+    }
+  } sink;
+  sink.d = &depths;
+  sink.D = D;
+  run_tiles(grid, all_tiles(grid), threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
+    Tile& w = tiles.local();
+    w.db.reset(r.width(), r.height());
+    const Viewport vp{int(r.x0), int(r.y0), int(r.x1), int(r.y1)};
+    zbuffer_triangles(pt.verts, pt.corners, bins.begin(t), size_t(bins.end(t) - bins.begin(t)), pt.perspective, vp,
+                      w.db, w.scratch, &w.counts);
+    w.out.resize(size_t(r.width()) * r.height());
+    for (size_t p = 0; p < w.out.size(); ++p) {
+      const double z = w.db.depth(p);
+      float f = float(z);
+      if (double(f) < z) f = std::nextafter(f, INFINITY);  // never nearer than the caster
+      w.out[p] = f;
+    }
+    return w.out.data();
+  });
+  for (const Tile& w : tiles) st.caster_fragments += w.counts.fragments;
+  for (float z : depths) st.texels_covered += std::isfinite(z);
+  st.ms_raster = ms_since(t0);
+
+  t0 = Clock::now();
+  m.finish(std::move(depths));
+  st.ms_multi_depth = ms_since(t0);
+  st.bytes = m.bytes();
+  if (stats) *stats = st;
+  return m;
+}
+
+double ShadowMap::bias_at(const glm::dvec3& p, const glm::dvec3& n) const {
+  const double d = view_->depth(p);
+  const double c = std::abs(glm::dot(n, to_light(light_, p)));
+  const double tan_t = c > 0 ? std::min(10.0, std::sqrt(std::max(0.0, 1 - c * c)) / c) : 10.0;
+  const double w = light_.type == LightType::Directional ? texel_ : texel_ * d;
+  return s_.bias + s_.slope_bias * tan_t * w * reach_ + std::ldexp(std::abs(d), -20);
+}
+
+uint32_t ShadowMap::lit_count(const glm::dvec3& p, const glm::dvec3& n) const {
+  if (!in_light_cone(light_, p) || !(glm::dot(n, to_light(light_, p)) > 0)) return 0;
+  const ViewPoint v = view_->project(p);
+  if (!(v.z > 0) && light_.type == LightType::Spot) return 0;
+  const double lim = v.z - bias_at(p, n);
+  const Kernel k = kernel_of(s_.pcf);
+  const int D = int(size_);
+  // Clamped before the int conversion (a point far off the map reads its edge).
+  const double X = std::clamp(v.x, -8.0, D + 8.0), Y = std::clamp(v.y, -8.0, D + 8.0);
+  if (!(X == X && Y == Y)) return 0;
+  const int bx = int(k.odd ? std::floor(X + 0.5) : std::floor(X)) + k.first;
+  const int by = int(k.odd ? std::floor(Y + 0.5) : std::floor(Y)) + k.first;
+  uint32_t lit = 0;
+  for (int dy = 0; dy < k.width; ++dy) {
+    const int y = std::clamp(by + dy, 0, D - 1);
+    for (int dx = 0; dx < k.width; ++dx) {
+      const int x = std::clamp(bx + dx, 0, D - 1);
+      const float* z = md_.data() + (size_t(y) * size_ + size_t(x)) * n_;
+      for (uint32_t j = 0; j < n_; ++j) lit += lim <= double(z[j]);
+    }
+  }
+  return lit;
+}
+
+}  // namespace zs

@@ -1,0 +1,100 @@
+// A shadow map (digest §2.2) and its multiple-depth form, the n-SM (§2.6):
+// the depths of the casters nearest to a light, rendered by the raster core's
+// z-buffer over the map's own tiles, then one image-space pass that gives each
+// texel n depths. Shared by the surface renderer and (later) the sphere
+// renderer's ambient occlusion; it knows triangles, lights and world points,
+// nothing of either renderer.
+//
+// Frame: directional lights get an orthographic map whose square covers the
+// receivers in view (fit_directional), spot lights a perspective map of the
+// cone (full angle fov_deg inside the square). Depth is the light view's
+// depth in world units (orthographic: along the light direction; spot:
+// camera-space z), stored as float rounded upwards.
+//
+// Test (the composite test of §2.6.4, PCF(k,n) of §2.6.4 with a box kernel):
+// a point p at light depth d is lit by a stored depth z when
+//   d − bias_total ≤ z,   bias_total = bias + slope_bias·tanθ·w·(1 + R) + 2^-20·|d|
+// with θ the angle between the surface normal and the light, tanθ clamped to
+// 10, w the world size of a texel at p, R the farthest texel the test reads
+// beyond p's own (PCF radius, plus one for min-selected or fixed-pattern
+// depths; max-selected depths add nothing: they cannot self-shadow), and the
+// last term the float storage. The lit count over the k kernel texels × n
+// depths, out of k·n, is the lit fraction: at most n·k + 1 distinct levels.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "mesh/tet_mesh.h"  // Bounds
+#include "shadows/light.h"
+#include "shadows/shadow_settings.h"
+#include "surfaces/triangle_mesh.h"
+#include "view/camera.h"
+
+namespace zs {
+
+// The box, in a directional light's frame, of the receivers it must cover.
+struct LightFit {
+  glm::dvec3 r{1, 0, 0}, u{0, 1, 0}, f{0, 0, 1};  // frame: f = light direction
+  double lo_r = INFINITY, hi_r = -INFINITY, lo_u = INFINITY, hi_u = -INFINITY;
+  void add(const glm::dvec3& p);
+  bool empty() const { return !(lo_r <= hi_r); }
+};
+LightFit start_fit(const Light& l);
+
+struct ShadowMapStats {
+  double ms_project = 0, ms_raster = 0, ms_multi_depth = 0;
+  uint64_t casters = 0;         // triangles projected into the map
+  uint64_t caster_fragments = 0;
+  uint64_t texels_covered = 0;  // texels with a caster
+  uint64_t bytes = 0;           // the map and its n-SM
+};
+
+class ShadowMap {
+ public:
+  // Renders the casters (every triangle, both faces) from `light` on
+  // `threads` threads. `fit`: the receivers to cover (directional lights;
+  // ignored for spot lights). `scene`: the casters' bounds.
+  static ShadowMap build(const TriangleMesh& casters, const Light& light, const LightFit& fit, const Bounds& scene,
+                         const ShadowSettings& s, int threads, ShadowMapStats* stats = nullptr);
+  // A map from given depths (size·size, row-major; +inf = no caster) in a
+  // given frame: tests and synthetic maps.
+  static ShadowMap from_depths(const Light& light, const Camera& frame, uint32_t size, std::vector<float> depths,
+                               const ShadowSettings& s);
+
+  // Lit tests passed at world point p with unit normal n (facing the
+  // viewer), out of levels(); 0 outside a spot light's cone or where n faces
+  // away from the light. Thread-safe.
+  uint32_t lit_count(const glm::dvec3& p, const glm::dvec3& n) const;
+  uint32_t levels() const { return levels_; }  // k·n
+  double lit(const glm::dvec3& p, const glm::dvec3& n) const { return double(lit_count(p, n)) / levels_; }
+
+  // Texel (x, y)'s j-th depth (j < depths()); the n-SM as built.
+  float depth(uint32_t x, uint32_t y, uint32_t j = 0) const { return md_[(size_t(y) * size_ + x) * n_ + j]; }
+  uint32_t size() const { return size_; }
+  uint32_t depths() const { return n_; }
+  const View& view() const { return *view_; }
+  // The bias the test applies at p (world units), for tests and docs.
+  double bias_at(const glm::dvec3& p, const glm::dvec3& n) const;
+  // The kernel's texel offsets, relative to floor(X) or round(X) (see .cpp).
+  uint64_t bytes() const { return md_.size() * sizeof(float); }
+
+ private:
+  void finish(std::vector<float> depths);  // builds the n-SM
+  Light light_;
+  ShadowSettings s_;
+  std::shared_ptr<View> view_;
+  uint32_t size_ = 0, n_ = 1, levels_ = 1;
+  double texel_ = 0;   // orthographic: world size of a texel; spot: per unit depth
+  double reach_ = 1;   // 1 + R of the header comment
+  std::vector<float> md_;  // size² × n, texel-major
+};
+
+// Bytes a map of these settings holds (for budgets).
+uint64_t shadow_map_bytes(const ShadowSettings& s);
+
+}  // namespace zs

@@ -1,0 +1,264 @@
+#include "surface/surface_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <tbb/enumerable_thread_specific.h>
+
+#include "raster/depth_buffer.h"
+#include "raster/tile_loop.h"
+#include "raster/triangle_bins.h"
+#include "raster/zbuffer_tile.h"
+#include "shadows/shadow_rays.h"
+#include "surfaces/visible_region.h"
+#include "util/bytes_str.h"
+#include "util/memory.h"
+
+namespace zs {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+struct TileState {
+  DepthBuffer db;
+  ZBufferScratch scratch;
+  std::vector<float> out;
+  SurfaceTileTotals totals;
+};
+
+// Per-pixel state of a tile: depth (8) + id (4) + the output floats.
+constexpr uint64_t kTilePixelBytes = 12;
+
+}  // namespace
+
+std::vector<std::string> surface_channel_names(size_t lights) {
+  std::vector<std::string> n = {"R", "G", "B", "A", "Z"};
+  for (size_t l = 0; l < lights; ++l) n.push_back("lit" + std::to_string(l));
+  return n;
+}
+
+uint64_t triangle_mesh_bytes(const TriangleMesh& m) {
+  return m.points.size() * sizeof(glm::dvec3) * 2 + m.tris.size() * (sizeof(m.tris[0]) + 4);
+}
+
+struct SurfaceRenderer::Impl {
+  const TriangleMesh& mesh;
+  const SurfaceRenderSettings& rs;
+  View view;
+  TileGrid grid;
+  ProjectedTriangles pt;
+  TriangleBins bins;
+  std::vector<ShadowMap> maps;
+  std::unique_ptr<ShadowRays> rays;
+  bool shadows = false;
+  SurfaceStats setup;
+  SurfaceTileTotals totals;
+  tbb::enumerable_thread_specific<TileState> states;
+  glm::dvec3 bg_rgb{0.0};
+  double bg_a = 0;
+
+  Impl(const TriangleMesh& m, const SurfaceRenderSettings& settings, uint64_t extra_bytes)
+      : mesh(m), rs(settings), view(settings.camera, settings.width, settings.height) {
+    const auto t_start = Clock::now();
+    if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
+    if (rs.tile_size < 1) throw std::runtime_error("tile size must be at least 1 pixel");
+    if (mesh.normals.size() != mesh.points.size()) throw std::runtime_error("surface renderer: point normals missing");
+    for (uint32_t s : mesh.surface)
+      if (s >= rs.colors.size()) throw std::runtime_error("surface renderer: a triangle's surface has no colour");
+    const size_t L = rs.lights.size();
+    grid = TileGrid{rs.width, rs.height, rs.tile_size, uint32_t(5 + L)};
+    if (uint64_t(grid.cols()) * grid.rows() >= (uint64_t(1) << 32))
+      throw std::runtime_error("too many tiles; use a larger tile size");
+    const int threads = std::max(1, rs.threads);
+    const uint64_t budget = rs.memory_budget_bytes ? rs.memory_budget_bytes : default_memory_budget();
+    SurfaceStats& S = setup;
+    S.memory_budget_bytes = budget;
+    S.tile_size = rs.tile_size;
+    shadows = rs.shadows_enabled && L > 0;
+    const bool exact = rs.shadows.mode == ShadowMode::Exact;
+    const uint64_t tile_px = uint64_t(rs.tile_size) * rs.tile_size;
+    uint64_t need = extra_bytes + uint64_t(threads) * tile_px * (kTilePixelBytes + 4 * grid.channels) +
+                    relay_queue_tiles(grid, threads) * tile_px * 4 * grid.channels +
+                    // projected vertices and corners, bins (estimate: each triangle in ~2 tiles)
+                    mesh.num_points() * sizeof(ScreenVertex) + mesh.num_tris() * (16 + 8);
+    if (shadows && !exact) need += L * shadow_map_bytes(rs.shadows) + mesh.num_points() * sizeof(ScreenVertex);
+    if (shadows && exact) need += mesh.num_points() * 12 + mesh.num_tris() * 12 * 3;  // vertex/index buffers + BVH
+    if (need > budget)
+      throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " + std::to_string(rs.width) +
+                               "x" + std::to_string(rs.height) + " render of " + std::to_string(mesh.num_tris()) +
+                               " triangles" + (shadows && !exact ? " with its shadow maps" : "") +
+                               " (needs more than " + bytes_str(need) + "); raise --memory-budget" +
+                               (shadows && !exact ? " or lower shadows.map_size" : ""));
+
+    const Bounds scene = triangle_bounds(mesh);
+    const double diag = std::max(scene.empty ? 1.0 : scene.diagonal(), 1e-300);
+    // Near plane: a millionth of the scene in front of a perspective eye;
+    // orthographic views keep depth >= 0 (the eye plane).
+    const double z_near = view.perspective() ? 1e-6 * (diag + glm::length(view.eye() - scene.centre())) : 0.0;
+
+    auto t = Clock::now();
+    project_triangles(mesh, view, {rs.cull_back, rs.cull_view, z_near}, &pt, &S.project);
+    S.ms_project = ms_since(t);
+    t = Clock::now();
+    bin_triangles(grid, pt.verts, pt.corners, &bins);
+    S.bin_entries = bins.entries();
+    S.ms_binning = ms_since(t);
+
+    t = Clock::now();
+    if (shadows && !exact) {
+      std::vector<LightFit> fits;
+      for (const Light& l : rs.lights) fits.push_back(start_fit(l));
+      const auto t_fit = Clock::now();
+      bool any_directional = false;
+      for (const Light& l : rs.lights) any_directional |= l.type == LightType::Directional;
+      if (any_directional)
+        visible_region_points(mesh, view, z_near, rs.cull_back, [&](const glm::dvec3& p) {
+          for (LightFit& f : fits) f.add(p);
+        });
+      S.ms_fit = ms_since(t_fit);
+      for (size_t l = 0; l < L; ++l) {
+        ShadowMapStats ms;
+        maps.push_back(ShadowMap::build(mesh, rs.lights[l], fits[l], scene, rs.shadows, threads, &ms));
+        S.maps.push_back(ms);
+      }
+    } else if (shadows) {
+      rays = std::make_unique<ShadowRays>(mesh, threads);
+      S.ms_rays_build = rays->ms_build();
+    }
+    S.ms_shadows = ms_since(t);
+    bg_rgb = glm::dvec3(rs.background[0], rs.background[1], rs.background[2]);
+    bg_a = rs.background[3];
+    S.ms_setup = ms_since(t_start);
+  }
+
+  // One tile: z-buffer, then each covered pixel resolved once.
+  const float* render_tile(uint32_t tile, const TileRect& r) {
+    const auto t0 = Clock::now();
+    TileState& w = states.local();
+    const uint32_t tw = r.width(), th = r.height(), C = grid.channels;
+    w.db.reset(tw, th);
+    const Viewport vp{int(r.x0), int(r.y0), int(r.x1), int(r.y1)};
+    ZBufferCounts zc;
+    zbuffer_triangles(pt.verts, pt.corners, bins.begin(tile), size_t(bins.end(tile) - bins.begin(tile)),
+                      pt.perspective, vp, w.db, w.scratch, &zc);
+    SurfaceTileTotals& T = w.totals;
+    T.tiles += 1;
+    T.triangles_scanned += zc.triangles;
+    T.fragments += zc.fragments;
+    T.depth_writes += zc.depth_writes;
+    w.out.resize(size_t(tw) * th * C);
+    const size_t L = rs.lights.size();
+    for (uint32_t y = 0; y < th; ++y)
+      for (uint32_t x = 0; x < tw; ++x) {
+        const size_t p = size_t(y) * tw + x;
+        float* o = w.out.data() + p * C;
+        const uint32_t id = w.db.id(p);
+        if (id == kNoId) {
+          o[0] = float(bg_rgb.x);
+          o[1] = float(bg_rgb.y);
+          o[2] = float(bg_rgb.z);
+          o[3] = float(bg_a);
+          for (uint32_t c = 4; c < C; ++c) o[c] = INFINITY;
+          continue;
+        }
+        ++T.rendered_pixels;
+        shade_pixel(double(r.x0 + x), double(r.y0 + y), pt.source[id], w.db.depth(p), o, T, L);
+      }
+    T.ms_tiles += ms_since(t0);
+    return w.out.data();
+  }
+
+  void shade_pixel(double X, double Y, uint32_t s, double zbuf, float* o, SurfaceTileTotals& T, size_t L) const {
+    glm::dvec3 org, dir;
+    view.ray(X, Y, &org, &dir);
+    const auto& tri = mesh.tris[s];
+    const glm::dvec3 &a = mesh.points[tri[0]], &b = mesh.points[tri[1]], &c = mesh.points[tri[2]];
+    const glm::dvec3 fn = glm::cross(b - a, c - a);
+    // The exact hit of the pixel's ray with the triangle's plane; a ray
+    // parallel to it (a sliver seen edge-on) takes the rasterized depth.
+    const double den = glm::dot(dir, fn);
+    glm::dvec3 p;
+    if (den != 0 && std::isfinite(den)) {
+      p = org + dir * (glm::dot(a - org, fn) / den);
+    } else {
+      p = org + dir * (zbuf * view.ray_length_factor(X, Y));
+    }
+    glm::dvec3 ng = glm::normalize(fn);
+    const bool flipped = glm::dot(ng, dir) > 0;
+    if (flipped) ng = -ng;
+    glm::dvec3 ns = ng;
+    if (rs.shading.model == ShadingModel::Phong) {
+      const double n2 = glm::dot(fn, fn);
+      double wa = glm::dot(glm::cross(b - p, c - p), fn) / n2, wb = glm::dot(glm::cross(c - p, a - p), fn) / n2;
+      wa = std::clamp(wa, 0.0, 1.0);
+      wb = std::clamp(wb, 0.0, 1.0 - wa);
+      const double wc = 1.0 - wa - wb;
+      const glm::dvec3 n = wa * mesh.normals[tri[0]] + wb * mesh.normals[tri[1]] + wc * mesh.normals[tri[2]];
+      const double len = glm::length(n);
+      if (len > 0 && std::isfinite(len)) ns = (flipped ? -n : n) / len;
+    }
+    const glm::dvec3 v = -dir;
+    double diffuse = 0, specular = 0;
+    for (size_t l = 0; l < L; ++l) {
+      double lit = 1;
+      if (shadows) {
+        if (rays) {
+          lit = rays->lit(rs.lights[l], p, ng) ? 1.0 : 0.0;
+          ++T.shadow_rays;
+        } else {
+          lit = maps[l].lit(p, ng);
+          ++T.shadow_tests;
+        }
+      } else if (!in_light_cone(rs.lights[l], p) || !(glm::dot(ng, to_light(rs.lights[l], p)) > 0)) {
+        lit = 0;
+      }
+      T.lit_pixels += lit > 0;
+      o[5 + l] = float(lit);
+      add_light(rs.shading, ns, to_light(rs.lights[l], p), v, lit, &diffuse, &specular);
+    }
+    const glm::dvec3 col = surface_colour(rs.shading, rs.colors[mesh.surface[s]], diffuse, specular);
+    o[0] = float(col.x);
+    o[1] = float(col.y);
+    o[2] = float(col.z);
+    o[3] = 1.f;
+    o[4] = float(view.depth(p));
+  }
+};
+
+SurfaceRenderer::SurfaceRenderer(const TriangleMesh& mesh, const SurfaceRenderSettings& settings, uint64_t extra_bytes)
+    : impl_(std::make_unique<Impl>(mesh, settings, extra_bytes)) {}
+SurfaceRenderer::~SurfaceRenderer() = default;
+const TileGrid& SurfaceRenderer::grid() const { return impl_->grid; }
+int SurfaceRenderer::threads() const { return std::max(1, impl_->rs.threads); }
+
+void SurfaceRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* tiles) {
+  Impl& I = *impl_;
+  const auto t0 = Clock::now();
+  for (TileState& s : I.states) s.totals = {};
+  run_tiles(I.grid, tiles ? *tiles : all_tiles(I.grid), threads(), sink,
+            [&](uint32_t t, const TileRect& r) { return I.render_tile(t, r); });
+  for (const TileState& s : I.states) I.totals += s.totals;
+  I.setup.ms_total += ms_since(t0);
+}
+
+std::vector<uint8_t> SurfaceRenderer::tile_totals() const { return pod_bytes(impl_->totals); }
+void SurfaceRenderer::add_tile_totals(const std::vector<uint8_t>& other) {
+  SurfaceTileTotals t;
+  if (!pod_from_bytes(other, &t)) throw std::runtime_error("surface renderer: tile totals of another kind");
+  impl_->totals += t;
+}
+
+SurfaceStats SurfaceRenderer::stats() const {
+  SurfaceStats s = impl_->setup;
+  s.tiles = impl_->totals;
+  s.ms_total += s.ms_setup;
+  s.peak_rss_bytes = peak_rss_bytes();
+  return s;
+}
+
+}  // namespace zs
