@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "cli/json_out.h"
+#include "cli/render_surfaces.h"
 #include "cli/scene_args.h"
 #include "mesh/topology.h"
 #include "reference/reference_renderer.h"
@@ -88,7 +89,7 @@ void add_reference_command(CLI::App& app) {
   auto out = std::make_shared<std::string>(), stats = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
       "reference", "Ground-truth image: an independent ray caster (tet walk, exact integration, no early termination; "
-      "sphere scenes: Embree with exact hits)");
+      "sphere scenes: Embree with exact hits; surface scenes: Embree shadow rays)");
   a->add_options(*cmd, false);
   cmd->add_option("-o,--output", *out, "Output image (.exr or .tif keep the float values)")->required();
   cmd->add_option("--stats", *stats, "Write ray-casting statistics as JSON");
@@ -96,6 +97,14 @@ void add_reference_command(CLI::App& app) {
     SceneInput in = a->load();
     if (in.scene.kind == SceneKind::Spheres) {
       reference_spheres(in, *out, *stats, in.scene.settings.threads);
+      return;
+    }
+    if (in.scene.kind == SceneKind::Surfaces) {
+      // The surface renderer's ground truth is its exact mode: one Embree
+      // shadow ray per visible pixel and light (docs/shadows.md).
+      in.scene.surfaces.shadows.mode = ShadowMode::Exact;
+      if (!stats->empty()) AtomicFile(*stats).check_writable();
+      run_surfaces(in, *out, *stats, 1, "");
       return;
     }
     AtomicFile(*out).check_writable();  // before minutes of ray casting

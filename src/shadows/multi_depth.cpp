@@ -6,11 +6,12 @@
 namespace zs {
 
 std::vector<std::pair<int, int>> depth_pattern(uint32_t n) {
+  // The 8 neighbours counter-clockwise from +x; n − 1 of them, spread evenly.
+  static const std::pair<int, int> ring[8] = {{1, 0},  {1, 1},   {0, 1},  {-1, 1},
+                                               {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
   std::vector<std::pair<int, int>> p;
-  for (uint32_t i = 0; i + 1 < n; ++i) {
-    const double a = 2 * M_PI * i / double(n - 1);
-    p.push_back({int(std::lround(std::cos(a))), int(std::lround(std::sin(a)))});
-  }
+  const uint32_t m = n - 1;
+  for (uint32_t i = 0; i < m; ++i) p.push_back(ring[std::lround(8.0 * i / m) % 8]);
   return p;
 }
 

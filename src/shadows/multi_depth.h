@@ -3,8 +3,10 @@
 //   n = 1: z_c (the classic map);
 //   n = 2: z_c and the maximum (or minimum, `select`) of its 3×3 neighbourhood;
 //   n = 3: z_c, the maximum and the minimum of the 3×3 neighbourhood;
-//   n = 4..9: z_c and n − 1 fixed samples at angles 2πi/(n − 1) on a circle of
-//             one texel, rounded to texels (the digest's inferred pattern).
+//   n = 4..9: z_c and n − 1 fixed neighbours spread evenly around it: ring
+//             position round(8i/(n − 1)) of the 8 neighbours counter-clockwise
+//             from +x (n = 4: at 0°, 135°, 225°, close to the digest's 120°
+//             spacing; n = 5: the four axis neighbours; n = 9: all eight).
 // Borders clamp to the edge. Cost: size² × q reads (q = 9, or n − 1 + 1).
 #pragma once
 

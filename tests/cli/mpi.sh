@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `zsweep render --mpi` under `mpirun -np 2`: both schedules, one and two
-# threads per rank, the default scene, a one-tet mesh and a sphere set, each image
+# threads per rank, the default scene, a one-tet mesh, a sphere set and a
+# triangle surface (its shadow map built on every rank), each image
 # bit-identical to a single-process render; rank 0 alone writes (every rank
 # runs in its own directory with a relative -o, and its stdout/stderr go to
 # files there); failures give one line naming the file and never hang.
@@ -45,7 +46,9 @@ tiles=()
 small="$src/tests/data/ok/no_final_newline.off"  # one tet, automatic camera: fills the image
 # A sphere set: the sphere renderer through the same MPI path (RGBA and Z).
 spheres="$src/tests/data/spheres/small.pdb"
-inputs=("default" "$small" "$spheres")
+# A triangle surface: the surface renderer (RGBA, Z, lit0).
+surface="$src/tests/data/surfaces/pyramid.obj"
+inputs=("default" "$small" "$spheres" "$surface")
 for input in "${inputs[@]}"; do
   in=(); [ "$input" = default ] || in=("$input")
   name=$(basename "$input")

@@ -1,0 +1,220 @@
+// The shadow-map module (src/shadows/): the digest's step-edge table, level
+// counts of PCF(k, n), the fixed patterns, the bias on tilted receivers.
+#include <cmath>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "shadows/multi_depth.h"
+#include "shadows/shadow_map.h"
+
+namespace zs {
+namespace {
+
+// An orthographic map of D×D unit texels looking along +z: texel (i, j)'s
+// centre is the world point texel_point(i, j, depth).
+constexpr uint32_t D = 32;
+Camera map_frame() {
+  Camera c;
+  c.projection = Projection::Orthographic;
+  c.eye = {0, 0, 0};
+  c.target = {0, 0, 1};
+  c.up = {0, 1, 0};
+  c.height = D;
+  return c;
+}
+Light down_z() {
+  Light l;
+  l.type = LightType::Directional;
+  l.direction = {0, 0, 1};
+  return l;
+}
+glm::dvec3 point_at(const View& v, double X, double Y, double depth) {
+  glm::dvec3 o, d;
+  v.ray(X, Y, &o, &d);
+  return o + d * depth;
+}
+const glm::dvec3 kFacing{0, 0, -1};  // a receiver facing the light
+
+ShadowSettings settings(uint32_t depths, DepthSelect sel, uint32_t pcf, double bias = 0.1) {
+  ShadowSettings s;
+  s.depths = depths;
+  s.select = sel;
+  s.pcf = pcf;
+  s.bias = bias;
+  s.slope_bias = 0;
+  return s;
+}
+
+// Occluder at depth O over the columns x <= 15, receiver at R elsewhere.
+constexpr float O = 1.0f, R = 2.0f;
+std::vector<float> step_map() {
+  std::vector<float> z(D * D);
+  for (uint32_t y = 0; y < D; ++y)
+    for (uint32_t x = 0; x < D; ++x) z[y * D + x] = x <= 15 ? O : R;
+  return z;
+}
+
+// Digest §2.6.5's table: the receiver's lit fraction at cells −2, −1, 0, +1
+// of the edge (cells 14, 15, 16, 17 here), for 1-SM, 2-SM max/min, 3-SM.
+TEST(ShadowMaps, StepEdgeTableExactly) {
+  struct Row {
+    uint32_t n;
+    DepthSelect sel;
+    double lit[4];
+  };
+  const Row rows[] = {
+      {1, DepthSelect::Max, {0, 0, 1, 1}},
+      {2, DepthSelect::Max, {0, 0.5, 1, 1}},
+      {2, DepthSelect::Min, {0, 0, 0.5, 1}},
+      {3, DepthSelect::Max, {0, 1.0 / 3, 2.0 / 3, 1}},
+  };
+  for (const Row& r : rows) {
+    const ShadowMap m = ShadowMap::from_depths(down_z(), map_frame(), D, step_map(), settings(r.n, r.sel, 1));
+    for (int c = 0; c < 4; ++c) {
+      const glm::dvec3 p = point_at(m.view(), 14 + c, 10, R);
+      EXPECT_DOUBLE_EQ(m.lit(p, kFacing), r.lit[c]) << r.n << "-SM " << to_string(r.sel) << " cell " << c - 2;
+    }
+    // The occluder's own top stays lit under every rule but min (its
+    // neighbourhood's minimum is itself; max-selected values are >= it).
+    const glm::dvec3 top = point_at(m.view(), 15, 10, O);
+    EXPECT_DOUBLE_EQ(m.lit(top, kFacing), 1.0) << r.n << "-SM " << to_string(r.sel);
+  }
+}
+
+TEST(ShadowMaps, MultiDepthPassKeepsCentreFirstAndSelects) {
+  std::vector<float> z(D * D);
+  for (uint32_t i = 0; i < z.size(); ++i) z[i] = float((i * 7919) % 101);
+  for (uint32_t n : {2u, 3u, 4u, 5u, 9u}) {
+    std::vector<float> out(z.size() * n);
+    build_multi_depth(z.data(), D, n, DepthSelect::Max, out.data());
+    for (uint32_t y = 1; y + 1 < D; ++y)
+      for (uint32_t x = 1; x + 1 < D; ++x) {
+        const float* o = &out[(y * D + x) * n];
+        EXPECT_EQ(o[0], z[y * D + x]);
+        float mx = -1, mn = 1e9;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            mx = std::max(mx, z[(y + dy) * D + x + dx]);
+            mn = std::min(mn, z[(y + dy) * D + x + dx]);
+          }
+        if (n == 2) EXPECT_EQ(o[1], mx);
+        if (n == 3) {
+          EXPECT_EQ(o[1], mx);
+          EXPECT_EQ(o[2], mn);
+        }
+        if (n >= 4) {
+          const auto pat = depth_pattern(n);
+          for (uint32_t i = 0; i + 1 < n; ++i) EXPECT_EQ(o[i + 1], z[(y + pat[i].second) * D + x + pat[i].first]);
+        }
+      }
+  }
+  // The patterns: n − 1 distinct neighbours, one texel away.
+  for (uint32_t n = 4; n <= kMaxDepths; ++n) {
+    const auto pat = depth_pattern(n);
+    std::set<std::pair<int, int>> distinct(pat.begin(), pat.end());
+    EXPECT_EQ(distinct.size(), n - 1) << n;
+    for (auto [dx, dy] : pat) EXPECT_EQ(std::max(std::abs(dx), std::abs(dy)), 1) << n;
+  }
+}
+
+// Every PCF(k, n) gives at most n·k + 1 distinct lit values, and reaches
+// it on a map with a round occluder and thin bars. A single straight edge is
+// not enough for n >= 2 with a 2×2 kernel: in a 2×2 window every texel
+// neighbours every other, so once a lit texel is in the window every
+// occluded one is a band texel (value 1 of 2 under max), and sums such as
+// 4 of 8 for PCF(4, 2) need an occluder thinner than the window.
+TEST(ShadowMaps, LevelCountsReachNkPlusOne) {
+  std::vector<float> z(D * D);
+  for (uint32_t y = 0; y < D; ++y)
+    for (uint32_t x = 0; x < D; ++x)
+      z[y * D + x] = std::hypot(x - 12.3, y - 16.1) < 7.7 || (x >= 25 && x <= 26) || (y >= 27 && y <= 29) ||
+                             (x == 29 && y < 20) ? O : R;
+  struct Cfg {
+    uint32_t n, k;
+    DepthSelect sel;
+  };
+  const Cfg cfgs[] = {{1, 1, DepthSelect::Max},  {2, 1, DepthSelect::Max}, {2, 1, DepthSelect::Min},
+                      {3, 1, DepthSelect::Max},  {1, 4, DepthSelect::Max}, {1, 9, DepthSelect::Max},
+                      {1, 16, DepthSelect::Max}, {2, 4, DepthSelect::Max}, {2, 9, DepthSelect::Max},
+                      {3, 4, DepthSelect::Max},  {3, 9, DepthSelect::Max}, {4, 4, DepthSelect::Max}};
+  for (const Cfg& c : cfgs) {
+    const ShadowMap m = ShadowMap::from_depths(down_z(), map_frame(), D, z, settings(c.n, c.sel, c.k));
+    std::set<uint32_t> seen;
+    for (double Y = 2; Y < D - 1; Y += 0.25)
+      for (double X = 2; X < D - 1; X += 0.25) seen.insert(m.lit_count(point_at(m.view(), X, Y, R), kFacing));
+    EXPECT_EQ(m.levels(), c.n * c.k);
+    EXPECT_LE(seen.size(), c.n * c.k + 1) << "PCF(" << c.k << "," << c.n << ")";
+    std::string lv;
+    for (uint32_t v : seen) lv += std::to_string(v) + " ";
+    EXPECT_EQ(seen.size(), c.n * c.k + 1) << "PCF(" << c.k << "," << c.n << "): " << lv;
+  }
+}
+
+// A receiver tilted against the light: the default slope bias keeps every
+// configuration free of self-shadowing; without it the min-selected and
+// wide-kernel tests shadow the plane itself.
+TEST(ShadowMaps, TiltedPlaneHasNoAcneAtTheDefaultBias) {
+  for (double deg : {20.0, 45.0, 70.0, 80.0}) {
+    const double t = std::tan(deg * M_PI / 180);
+    // Plane depth = 5 + t·x (x in world units along the map's X).
+    const Camera cam = map_frame();
+    const View v(cam, D, D);
+    std::vector<float> z(D * D);
+    for (uint32_t y = 0; y < D; ++y)
+      for (uint32_t x = 0; x < D; ++x) {
+        const glm::dvec3 p = point_at(v, x, y, 0);
+        const double d = 5 + t * p.x;
+        float f = float(d);
+        if (double(f) < d) f = std::nextafter(f, INFINITY);
+        z[y * D + x] = f;
+      }
+    const glm::dvec3 n = glm::normalize(glm::dvec3(t, 0, -1));  // facing the light
+    for (uint32_t depths : {1u, 2u, 3u, 4u})
+      for (DepthSelect sel : {DepthSelect::Max, DepthSelect::Min})
+        for (uint32_t k : {1u, 4u, 9u, 16u}) {
+          ShadowSettings s;  // default bias and slope bias
+          s.depths = depths;
+          s.select = sel;
+          s.pcf = k;
+          const ShadowMap m = ShadowMap::from_depths(down_z(), cam, D, z, s);
+          s.slope_bias = 0;
+          const ShadowMap unbiased = ShadowMap::from_depths(down_z(), cam, D, z, s);
+          uint32_t acne = 0, acne_unbiased = 0;
+          for (double Y = 4; Y < D - 4; Y += 0.37)
+            for (double X = 4; X < D - 4; X += 0.37) {
+              const glm::dvec3 q = point_at(v, X, Y, 0);
+              const glm::dvec3 p = point_at(v, X, Y, 5 + t * q.x);
+              acne += m.lit_count(p, n) != m.levels();
+              acne_unbiased += unbiased.lit_count(p, n) != unbiased.levels();
+            }
+          EXPECT_EQ(acne, 0u) << deg << " deg, " << depths << "-SM " << to_string(sel) << ", PCF " << k;
+          if (k > 1 || depths >= 3 || (depths == 2 && sel == DepthSelect::Min))
+            EXPECT_GT(acne_unbiased, 0u) << deg << " deg, " << depths << "-SM " << to_string(sel) << ", PCF " << k;
+        }
+  }
+}
+
+// Empty texels (+inf) never shadow; a point facing away is unlit; a spot
+// light reaches nothing outside its cone.
+TEST(ShadowMaps, EmptyTexelsFacingAndCone) {
+  const ShadowMap m = ShadowMap::from_depths(down_z(), map_frame(), D, std::vector<float>(D * D, INFINITY),
+                                             settings(3, DepthSelect::Max, 9));
+  const glm::dvec3 p = point_at(m.view(), 10, 10, 4);
+  EXPECT_EQ(m.lit_count(p, kFacing), m.levels());
+  EXPECT_EQ(m.lit_count(p, -kFacing), 0u);
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {0, 0, 0};
+  spot.target = {0, 0, 1};
+  spot.fov_deg = 60;
+  EXPECT_TRUE(in_light_cone(spot, {0.5, 0, 1}));   // 26.6° off the axis
+  EXPECT_FALSE(in_light_cone(spot, {0.6, 0, 1}));  // 31.0°
+  EXPECT_FALSE(in_light_cone(spot, {0, 0, 0}));
+}
+
+}  // namespace
+}  // namespace zs
