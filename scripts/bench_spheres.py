@@ -217,6 +217,8 @@ def vtk_worker(path, size, repeat, translucent=False):
     win.AddRenderer(ren)
     win.SetSize(size, size)
     load_s = time.perf_counter() - t0
+    # On stderr too, so a frame that times out still tells its load time apart.
+    print(f"vtk worker: loaded in {load_s:.1f} s", file=sys.stderr, flush=True)
     cam = ren.GetActiveCamera()
 
     def set_camera(c):

@@ -27,7 +27,9 @@ void write_surface_stats(const std::string& path, const SurfaceStats& S, const S
                     {"casters", m.casters},
                     {"caster_fragments", m.caster_fragments},
                     {"texels_covered", m.texels_covered},
-                    {"bytes", m.bytes}});
+                    {"bytes", m.bytes},
+                    {"texel", m.texel},
+                    {"side", m.side}});
   const ShadowSettings& sh = rs.shadows;
   nlohmann::json j = {
       {"renderer", "surfaces"},

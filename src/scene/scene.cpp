@@ -191,7 +191,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     s.kind = SceneKind::Spheres;
     parse_spheres_block(c, j, &s);
   } else if (j.contains("shading")) {
-    c.fail("'shading' is for sphere scenes");
+    c.fail("'shading' is for sphere and surface scenes");
   }
   const json& m = j.contains("mesh") ? j["mesh"] : json("");
   if (s.kind != SceneKind::Volume) {

@@ -207,6 +207,8 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   m.finish(std::move(depths));
   st.ms_multi_depth = ms_since(t0);
   st.bytes = m.bytes();
+  st.texel = m.texel_;
+  st.side = light.type == LightType::Directional ? cam.height : 0.0;
   if (stats) *stats = st;
   return m;
 }

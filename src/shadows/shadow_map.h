@@ -52,6 +52,8 @@ struct ShadowMapStats {
   uint64_t caster_fragments = 0;
   uint64_t texels_covered = 0;  // texels with a caster
   uint64_t bytes = 0;           // the map and its n-SM
+  double texel = 0;             // world size of a texel (spot: per unit of depth)
+  double side = 0;              // orthographic: world side of the map's square
 };
 
 class ShadowMap {

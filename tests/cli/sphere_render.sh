@@ -89,8 +89,8 @@ bad() {  # name json expected-substring
     echo "FAIL $1: rc $rc, stderr: $(cat "$tmp/err")"; fail=1
   fi
 }
-bad both '{"mesh": "m.off", "spheres": "set.sph"}' "'mesh' or 'spheres', not both"
-bad shading_on_volume '{"mesh": "m.off", "shading": {}}' "'shading' is for sphere scenes"
+bad both '{"mesh": "m.off", "spheres": "set.sph"}' "one of 'mesh', 'spheres' or 'surfaces'"
+bad shading_on_volume '{"mesh": "m.off", "shading": {}}' "'shading' is for sphere and surface scenes"
 bad unknown_key '{"spheres": "set.sph", "render": {"scan": "span"}}' "render"
 bad bad_mode '{"spheres": "set.sph", "render": {"mode": "glass"}}' "render.mode must be"
 bad bad_color '{"spheres": {"path": "set.sph", "color": "scalar"}}' "no scalar"

@@ -48,7 +48,7 @@ TEST(Scene, ParsesEveryKey) {
 
 TEST(Scene, RejectsBadInputWithOneLine) {
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "camrea": {}})"),
-            "s.json: unknown key 'scene.camrea' (allowed: mesh, spheres, image, camera, transfer_function, shading, render)");
+            "s.json: unknown key 'scene.camrea' (allowed: mesh, spheres, surfaces, image, camera, transfer_function, shading, render, ground, lights, shadows)");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"scan": "zigzag"}})"),
             "s.json: render.scan must be \"bbox\", \"bconvert\" or \"span\"");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"precision": "half"}})"),
@@ -264,8 +264,8 @@ TEST(Scene, SphereSceneErrors) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(err(R"({"mesh": "m.off", "spheres": "a.sph"})").find("not both"), std::string::npos);
-  EXPECT_NE(err(R"({"image": {}})").find("missing 'mesh' (volume) or 'spheres'"), std::string::npos);
+  EXPECT_NE(err(R"({"mesh": "m.off", "spheres": "a.sph"})").find("one of 'mesh', 'spheres' or 'surfaces'"), std::string::npos);
+  EXPECT_NE(err(R"({"image": {}})").find("missing 'mesh' (volume), 'spheres' or 'surfaces'"), std::string::npos);
   EXPECT_NE(err(R"({"spheres": {"path": "a.sph", "radius_scale": 0}})").find("radius_scale"), std::string::npos);
   EXPECT_NE(err(R"({"spheres": "a.sph", "shading": {"model": "toon"}})").find("shading.model"), std::string::npos);
   EXPECT_NE(err(R"({"spheres": "a.sph", "shading": {"ambient": 2}})").find("shading.ambient"), std::string::npos);
