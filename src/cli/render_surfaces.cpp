@@ -25,6 +25,7 @@ void write_surface_stats(const std::string& path, const SurfaceStats& S, const S
                     {"raster_ms", m.ms_raster},
                     {"multi_depth_ms", m.ms_multi_depth},
                     {"casters", m.casters},
+                    {"casters_culled", m.casters_culled},
                     {"caster_fragments", m.caster_fragments},
                     {"texels_covered", m.texels_covered},
                     {"bytes", m.bytes},

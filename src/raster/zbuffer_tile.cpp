@@ -1,5 +1,7 @@
 #include "raster/zbuffer_tile.h"
 
+#include <algorithm>
+
 #include "raster/span_scan.h"
 
 namespace zs {
@@ -28,6 +30,53 @@ void zbuffer_triangles(const std::vector<ScreenVertex>& verts, const std::vector
         st.attributes(x, r.y, &z, &s);
         c.depth_writes += db.test_write(row + size_t(x), z, t);
       }
+    }
+  }
+  *counts += c;
+}
+
+namespace {
+
+// One row of a span, min-merged into d[x0..x1]. The depth is the same
+// expression as ScreenTriangle::attributes with the row's term hoisted, in
+// a branch-free loop the compiler vectorizes.
+template <bool Perspective>
+void min_row(const ScreenTriangle& st, int32_t y, int32_t x0, int32_t x1, double* d) {
+  const double qy = st.q_gy * (double(y) - st.y0), lo = st.z_lo, hi = st.z_hi;
+  const int32_t m = x1 - x0;
+  for (int32_t i = 0; i <= m; ++i) {
+    const double q = st.q_c + st.q_gx * (double(x0 + i) - st.x0) + qy;
+    double z = Perspective ? 1.0 / q : q;
+    z = std::min(std::max(z, lo), hi) + 0.0;  // NaN stays NaN and never wins
+    d[i] = z < d[i] ? z : d[i];
+  }
+}
+
+}  // namespace
+
+void zbuffer_depths(const std::vector<ScreenVertex>& verts, const std::vector<std::array<uint32_t, 3>>& corners,
+                    const uint32_t* ids, size_t n, bool perspective, const Viewport& vp, double* depth,
+                    ZBufferScratch& scratch, ZBufferCounts* counts) {
+  ZBufferCounts c;
+  const size_t w = size_t(vp.x1 - vp.x0);
+  for (size_t k = 0; k < n; ++k) {
+    const uint32_t t = ids[k];
+    const ScreenVertex v[3] = {verts[corners[t][0]], verts[corners[t][1]], verts[corners[t][2]]};
+    ScreenTriangle st;
+    if (!setup_triangle(v, perspective, &st)) {
+      ++c.degenerate;
+      continue;
+    }
+    ++c.triangles;
+    scratch.spans.clear();
+    scan_span(st, vp, scratch.spans, scratch.scan);
+    for (const RowSpan& r : scratch.spans.rows) {
+      double* row = depth + size_t(r.y - vp.y0) * w + size_t(r.x0 - vp.x0);
+      c.fragments += uint64_t(r.x1 - r.x0 + 1);
+      if (perspective)
+        min_row<true>(st, r.y, r.x0, r.x1, row);
+      else
+        min_row<false>(st, r.y, r.x0, r.x1, row);
     }
   }
   *counts += c;

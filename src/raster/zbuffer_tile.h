@@ -44,4 +44,13 @@ void zbuffer_triangles(const std::vector<ScreenVertex>& verts, const std::vector
                        const uint32_t* ids, size_t n, bool perspective, const Viewport& vp, DepthBuffer& db,
                        ZBufferScratch& scratch, ZBufferCounts* counts);
 
+// Depth only (shadow maps): keeps each pixel's minimum depth in `depth`
+// (viewport-sized, row-major, +inf where empty), with no ids. The minimum of
+// a set does not depend on arrival order, and −0 is stored as +0, so the
+// buffer is still a function of the triangle set. The same fragments and depth
+// expression as zbuffer_triangles; depth_writes is not counted.
+void zbuffer_depths(const std::vector<ScreenVertex>& verts, const std::vector<std::array<uint32_t, 3>>& corners,
+                    const uint32_t* ids, size_t n, bool perspective, const Viewport& vp, double* depth,
+                    ZBufferScratch& scratch, ZBufferCounts* counts);
+
 }  // namespace zs

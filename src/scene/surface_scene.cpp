@@ -122,7 +122,7 @@ void parse_surface_blocks(const Ctx& c, const json& j, Scene* s) {
     if (sh.is_boolean()) {
       ss.shadows_enabled = sh.get<bool>();
     } else {
-      check_keys(c, sh, "shadows", {"map_size", "bias", "slope_bias", "depths", "select", "pcf", "mode"});
+      check_keys(c, sh, "shadows", {"map_size", "bias", "slope_bias", "depths", "select", "pcf", "mode", "caster_culling"});
       ShadowSettings& S = ss.shadows;
       auto count = [&](const char* k, uint64_t lo, uint64_t hi, uint32_t* out) {
         if (!sh.contains(k)) return;
@@ -152,6 +152,10 @@ void parse_surface_blocks(const Ctx& c, const json& j, Scene* s) {
         const json& x = sh["mode"];
         if (!x.is_string() || (x != "map" && x != "exact")) c.fail("shadows.mode must be \"map\" or \"exact\"");
         S.mode = x == "map" ? ShadowMode::Map : ShadowMode::Exact;
+      }
+      if (sh.contains("caster_culling")) {
+        if (!sh["caster_culling"].is_boolean()) c.fail("shadows.caster_culling must be true or false");
+        S.cull_casters = sh["caster_culling"].get<bool>();
       }
     }
   }

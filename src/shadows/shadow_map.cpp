@@ -9,7 +9,6 @@
 #include <glm/geometric.hpp>
 #include <tbb/enumerable_thread_specific.h>
 
-#include "raster/depth_buffer.h"
 #include "raster/tile_loop.h"
 #include "raster/triangle_bins.h"
 #include "raster/zbuffer_tile.h"
@@ -59,6 +58,37 @@ double reach_texels(const ShadowSettings& s) {
   return pcf + (near_depths ? 1 : 0);
 }
 
+// Triangles that can shadow no point of the scene. A triangle blocks the
+// light only for points strictly on the far side of its plane from the light;
+// when every corner of the scene's box lies on the light side or within tol
+// of the plane (tol = 1e-9 of the diagonal, far below the test's 2^-20·|d|
+// storage bias), it shadows nothing. A ground plane under the scene is the
+// usual case: it covers most of a map and casts onto nothing.
+std::vector<uint8_t> non_casters(const TriangleMesh& m, const Light& l, const Bounds& scene, double diag,
+                                 uint64_t* count) {
+  std::vector<uint8_t> skip(m.num_tris(), 0);
+  glm::dvec3 box[8];
+  for (int c = 0; c < 8; ++c)
+    box[c] = {c & 1 ? scene.hi.x : scene.lo.x, c & 2 ? scene.hi.y : scene.lo.y, c & 4 ? scene.hi.z : scene.lo.z};
+  uint64_t n = 0;
+  for (size_t t = 0; t < m.num_tris(); ++t) {
+    const glm::dvec3& a = m.points[m.tris[t][0]];
+    const glm::dvec3 nrm = face_normal(m, t);
+    // Sign of the light side: towards the light from the plane.
+    const double side = l.type == LightType::Directional ? -glm::dot(l.direction, nrm) : glm::dot(l.position - a, nrm);
+    if (!(side != 0) || !std::isfinite(side)) continue;
+    const double tol = 1e-9 * diag * glm::length(nrm);
+    bool all = true;
+    for (int c = 0; c < 8 && all; ++c) all = (side > 0 ? 1.0 : -1.0) * glm::dot(box[c] - a, nrm) >= -tol;
+    if (all) {
+      skip[t] = 1;
+      ++n;
+    }
+  }
+  *count = n;
+  return skip;
+}
+
 }  // namespace
 
 void LightFit::add(const glm::dvec3& p) {
@@ -97,6 +127,7 @@ ShadowMap ShadowMap::from_depths(const Light& light, const Camera& frame, uint32
 }
 
 void ShadowMap::finish(std::vector<float> depths) {
+  to_light_ = to_light(light_, glm::dvec3(0.0));  // directional lights: the same everywhere
   n_ = std::clamp<uint32_t>(s_.depths, 1, kMaxDepths);
   levels_ = n_ * std::max<uint32_t>(1, s_.pcf);
   reach_ = 1 + reach_texels(s_);
@@ -158,7 +189,9 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   auto t0 = Clock::now();
   ProjectedTriangles pt;
   ProjectCounts pc;
-  project_triangles(casters, *m.view_, {false, true, z_near}, &pt, &pc);
+  std::vector<uint8_t> skip;
+  if (s.cull_casters && !scene.empty) skip = non_casters(casters, light, scene, diag, &st.casters_culled);
+  project_triangles(casters, *m.view_, {false, true, z_near, skip.empty() ? nullptr : &skip}, &pt, &pc);
   const TileGrid grid{D, D, 64, 1};
   TriangleBins bins;
   bin_triangles(grid, pt.verts, pt.corners, &bins);
@@ -168,9 +201,10 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   t0 = Clock::now();
   std::vector<float> depths(size_t(D) * D, INFINITY);
   struct Tile {
-    DepthBuffer db;
+    std::vector<double> db;
     ZBufferScratch scratch;
     ZBufferCounts counts;
+    uint64_t covered = 0;
     std::vector<float> out;
   };
   tbb::enumerable_thread_specific<Tile> tiles;
@@ -184,23 +218,33 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   } sink;
   sink.d = &depths;
   sink.D = D;
-  run_tiles(grid, all_tiles(grid), threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
+  // Only tiles with casters are rendered; the rest stay +inf (most of a map
+  // fitted to the receivers in view, once the ground is culled).
+  std::vector<uint32_t> busy;
+  for (uint32_t t = 0; t < grid.count(); ++t)
+    if (bins.end(t) != bins.begin(t)) busy.push_back(t);
+  run_tiles(grid, busy, threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
     Tile& w = tiles.local();
-    w.db.reset(r.width(), r.height());
+    w.db.assign(size_t(r.width()) * r.height(), INFINITY);
     const Viewport vp{int(r.x0), int(r.y0), int(r.x1), int(r.y1)};
-    zbuffer_triangles(pt.verts, pt.corners, bins.begin(t), size_t(bins.end(t) - bins.begin(t)), pt.perspective, vp,
-                      w.db, w.scratch, &w.counts);
-    w.out.resize(size_t(r.width()) * r.height());
+    zbuffer_depths(pt.verts, pt.corners, bins.begin(t), size_t(bins.end(t) - bins.begin(t)), pt.perspective, vp,
+                   w.db.data(), w.scratch, &w.counts);
+    w.out.resize(w.db.size());
+    uint64_t covered = 0;
     for (size_t p = 0; p < w.out.size(); ++p) {
-      const double z = w.db.depth(p);
+      const double z = w.db[p];
       float f = float(z);
       if (double(f) < z) f = std::nextafter(f, INFINITY);  // never nearer than the caster
       w.out[p] = f;
+      covered += z < INFINITY;
     }
+    w.covered += covered;
     return w.out.data();
   });
-  for (const Tile& w : tiles) st.caster_fragments += w.counts.fragments;
-  for (float z : depths) st.texels_covered += std::isfinite(z);
+  for (const Tile& w : tiles) {
+    st.caster_fragments += w.counts.fragments;
+    st.texels_covered += w.covered;
+  }
   st.ms_raster = ms_since(t0);
 
   t0 = Clock::now();
@@ -214,18 +258,23 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
 }
 
 double ShadowMap::bias_at(const glm::dvec3& p, const glm::dvec3& n) const {
-  const double d = view_->depth(p);
-  const double c = std::abs(glm::dot(n, to_light(light_, p)));
+  return bias_for(view_->depth(p), std::abs(glm::dot(n, to_light(light_, p))));
+}
+
+double ShadowMap::bias_for(double d, double c) const {
   const double tan_t = c > 0 ? std::min(10.0, std::sqrt(std::max(0.0, 1 - c * c)) / c) : 10.0;
   const double w = light_.type == LightType::Directional ? texel_ : texel_ * d;
-  return s_.bias + s_.slope_bias * tan_t * w * reach_ + std::ldexp(std::abs(d), -20);
+  return s_.bias + s_.slope_bias * tan_t * w * reach_ + std::abs(d) * 0x1p-20;  // = ldexp(|d|, -20), without the libm call
 }
 
 uint32_t ShadowMap::lit_count(const glm::dvec3& p, const glm::dvec3& n) const {
-  if (!in_light_cone(light_, p) || !(glm::dot(n, to_light(light_, p)) > 0)) return 0;
-  const ViewPoint v = view_->project(p);
-  if (!(v.z > 0) && light_.type == LightType::Spot) return 0;
-  const double lim = v.z - bias_at(p, n);
+  const bool spot = light_.type == LightType::Spot;
+  if (spot && !in_light_cone(light_, p)) return 0;
+  const double c = glm::dot(n, spot ? to_light(light_, p) : to_light_);
+  if (!(c > 0)) return 0;
+  const ViewPoint v = view_->project(p);  // v.z: the light view's depth of p
+  if (!(v.z > 0) && spot) return 0;
+  const double lim = v.z - bias_for(v.z, c);
   const Kernel k = kernel_of(s_.pcf);
   const int D = int(size_);
   // Clamped before the int conversion (a point far off the map reads its edge).

@@ -49,6 +49,7 @@ LightFit start_fit(const Light& l);
 struct ShadowMapStats {
   double ms_project = 0, ms_raster = 0, ms_multi_depth = 0;
   uint64_t casters = 0;         // triangles projected into the map
+  uint64_t casters_culled = 0;  // left out: they can shadow no point (ShadowSettings::cull_casters)
   uint64_t caster_fragments = 0;
   uint64_t texels_covered = 0;  // texels with a caster
   uint64_t bytes = 0;           // the map and its n-SM
@@ -87,7 +88,9 @@ class ShadowMap {
 
  private:
   void finish(std::vector<float> depths);  // builds the n-SM
+  double bias_for(double d, double cos_theta) const;  // bias_at from p's light depth and |N·L|
   Light light_;
+  glm::dvec3 to_light_{0.0};  // directional: unit vector towards the light
   ShadowSettings s_;
   std::shared_ptr<View> view_;
   uint32_t size_ = 0, n_ = 1, levels_ = 1;

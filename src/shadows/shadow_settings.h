@@ -22,6 +22,9 @@ struct ShadowSettings {
   DepthSelect select = DepthSelect::Max;  // 2-SM only
   uint32_t pcf = 1;           // k: 1, 4, 9 or 16 texels
   ShadowMode mode = ShadowMode::Map;
+  // Leave out of the maps the triangles that can shadow nothing: the whole
+  // scene lies on their light side (shadow_map.h). Exact; off only to measure.
+  bool cull_casters = true;
 };
 
 const char* to_string(DepthSelect s);

@@ -44,6 +44,10 @@ void project_triangles(const TriangleMesh& m, const View& view, const ProjectOpt
   std::unordered_map<uint64_t, uint32_t> cut_ids;
   const glm::dvec3 eye = view.eye(), f = view.forward(), r = view.right(), u = view.up();
   for (size_t t = 0; t < m.num_tris(); ++t) {
+    if (opt.skip && (*opt.skip)[t]) {
+      ++c.skipped;
+      continue;
+    }
     const auto& tri = m.tris[t];
     const ScreenVertex v[3] = {out->verts[tri[0]], out->verts[tri[1]], out->verts[tri[2]]};
     if (!finite(v[0]) || !finite(v[1]) || !finite(v[2])) {

@@ -19,6 +19,7 @@ struct ProjectOptions {
   bool cull_back = true;   // drop triangles whose back faces the eye
   bool cull_view = true;   // drop triangles with no pixel centre of the image in their box
   double z_near = 0;       // keep view depth >= z_near
+  const std::vector<uint8_t>* skip = nullptr;  // per triangle: nonzero = leave out (counted as skipped)
 };
 
 struct ProjectCounts {
@@ -27,7 +28,9 @@ struct ProjectCounts {
   uint64_t view_culled = 0;   // outside the view volume: beside the image or behind z_near
   uint64_t near_clipped = 0;  // cut by the near plane (kept in part)
   uint64_t degenerate = 0;    // zero area or a non-finite point: nothing to draw
+  uint64_t skipped = 0;       // left out by ProjectOptions::skip
   void operator+=(const ProjectCounts& o) {
+    skipped += o.skipped;
     triangles += o.triangles;
     back_culled += o.back_culled;
     view_culled += o.view_culled;

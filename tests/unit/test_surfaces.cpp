@@ -15,6 +15,7 @@
 #include "raster/image_sink.h"
 #include "raster/triangle_bins.h"
 #include "raster/zbuffer_tile.h"
+#include "shadows/shadow_map.h"
 #include "surface/surface_renderer.h"
 #include "surfaces/io/surface_reader.h"
 #include "surfaces/triangle_projection.h"
@@ -174,6 +175,23 @@ TEST(Surfaces, ZBufferDepthMatchesClosedFormRayTriangleHits) {
     ZBufferCounts zc;
     zbuffer_triangles(pt.verts, pt.corners, ids.data(), ids.size(), pt.perspective, {0, 0, int(W), int(H)}, db,
                       scratch, &zc);
+    // The depth-only kernel (shadow maps) keeps the same front depths, bit
+    // for bit, over tiles of any size, and scans the same fragments.
+    for (int ts : {16, 33, 96}) {
+      std::vector<double> only(size_t(W) * H, INFINITY);
+      ZBufferCounts oc;
+      for (int y0 = 0; y0 < int(H); y0 += ts)
+        for (int x0 = 0; x0 < int(W); x0 += ts) {
+          const Viewport vp{x0, y0, std::min(x0 + ts, int(W)), std::min(y0 + ts, int(H))};
+          std::vector<double> tile(size_t(vp.x1 - vp.x0) * (vp.y1 - vp.y0), INFINITY);
+          zbuffer_depths(pt.verts, pt.corners, ids.data(), ids.size(), pt.perspective, vp, tile.data(), scratch, &oc);
+          for (int y = vp.y0; y < vp.y1; ++y)
+            for (int x = vp.x0; x < vp.x1; ++x)
+              only[size_t(y) * W + x] = tile[size_t(y - vp.y0) * (vp.x1 - vp.x0) + (x - vp.x0)];
+        }
+      EXPECT_EQ(oc.fragments, zc.fragments);
+      for (size_t p = 0; p < only.size(); ++p) ASSERT_EQ(only[p], db.depth(p)) << "tile " << ts << " pixel " << p;
+    }
     uint32_t checked = 0;
     for (uint32_t y = 0; y < H; ++y)
       for (uint32_t x = 0; x < W; ++x) {
@@ -278,6 +296,54 @@ TEST(Surfaces, AnalyticShadowOfASquareMapAndExact) {
       EXPECT_LT(wrong, ground / 50);
     }
   }
+}
+
+// Caster culling (shadow_map.cpp): a ground under everything shadows nothing,
+// so it is left out of the map and every lit count stays the same; with a
+// receiver below the ground it is kept and shadows that receiver.
+TEST(Surfaces, CasterCullingLeavesOutOnlyWhatShadowsNothing) {
+  TriangleMesh m;
+  m.points = {{-0.5, 1, -0.5}, {0.5, 1, -0.5}, {0.5, 1, 0.5}, {-0.5, 1, 0.5},   // occluder
+              {-3, 0, -3},     {3, 0, -3},     {3, 0, 3},     {-3, 0, 3}};       // ground
+  m.tris = {{0, 2, 1}, {0, 3, 2}, {4, 6, 5}, {4, 7, 6}};
+  m.surface = {0, 0, 1, 1};
+  Light light;
+  light.direction = {0.3, -1, 0.2};
+  const glm::dvec3 up(0, 1, 0);
+  auto build = [&](bool cull, ShadowMapStats* st) {
+    LightFit fit = start_fit(light);
+    for (const glm::dvec3& p : m.points) fit.add(p);
+    ShadowSettings s;
+    s.map_size = 256;
+    s.cull_casters = cull;
+    return ShadowMap::build(m, light, fit, triangle_bounds(m), s, 2, st);
+  };
+  ShadowMapStats on, off;
+  const ShadowMap a = build(true, &on), b = build(false, &off);
+  EXPECT_EQ(on.casters_culled, 2u);  // the ground's two triangles
+  EXPECT_EQ(off.casters_culled, 0u);
+  EXPECT_EQ(on.casters, 2u);
+  EXPECT_LT(on.texels_covered, off.texels_covered);
+  uint32_t shadowed = 0;
+  for (double x = -2.9; x < 2.9; x += 0.05)
+    for (double z = -2.9; z < 2.9; z += 0.05) {
+      const glm::dvec3 g(x, 0, z), o(0.45 * x / 2.9, 1, 0.45 * z / 2.9);
+      ASSERT_EQ(a.lit_count(g, up), b.lit_count(g, up)) << x << "," << z;
+      ASSERT_EQ(a.lit_count(o, up), b.lit_count(o, up)) << x << "," << z;
+      shadowed += a.lit_count(g, up) == 0;
+    }
+  EXPECT_GT(shadowed, 100u);
+  // A receiver below the ground: the ground must stay a caster.
+  m.points.push_back({0, -1, 0});
+  m.points.push_back({0.1, -1, 0});
+  m.points.push_back({0, -1, 0.1});
+  m.tris.push_back({8, 10, 9});
+  m.surface.push_back(0);
+  ShadowMapStats below;
+  const ShadowMap c = build(true, &below);
+  EXPECT_EQ(below.casters_culled, 1u);  // only the lowest triangle: everything is on its light side
+  EXPECT_EQ(below.casters, 4u);
+  EXPECT_EQ(c.lit_count({2.5, -1, 2.5}, up), 0u);  // under the ground, off the occluder's shadow
 }
 
 // A ground plane running behind a perspective eye just above it: near
