@@ -12,6 +12,7 @@
 #include "raster/tile_loop.h"
 #include "raster/triangle_bins.h"
 #include "raster/zbuffer_tile.h"
+#include "shadows/depth_blocks.h"
 #include "shadows/multi_depth.h"
 #include "surfaces/triangle_projection.h"
 
@@ -131,6 +132,12 @@ void ShadowMap::finish(std::vector<float> depths) {
   n_ = std::clamp<uint32_t>(s_.depths, 1, kMaxDepths);
   levels_ = n_ * std::max<uint32_t>(1, s_.pcf);
   reach_ = 1 + reach_texels(s_);
+  if (blocks_.min.empty()) {
+    blocks_.reset(size_);
+    fold_block_ranges(depths.data(), size_, 0, 0, size_, size_, blocks_);
+  }
+  // An n-SM holds neighbours' depths, one texel away.
+  if (n_ >= 2) dilate_block_ranges(blocks_);
   if (n_ == 1) {
     md_ = std::move(depths);
     return;
@@ -220,6 +227,7 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   sink.D = D;
   // Only tiles with casters are rendered; the rest stay +inf (most of a map
   // fitted to the receivers in view, once the ground is culled).
+  m.blocks_.reset(D);
   std::vector<uint32_t> busy;
   for (uint32_t t = 0; t < grid.count(); ++t)
     if (bins.end(t) != bins.begin(t)) busy.push_back(t);
@@ -239,6 +247,8 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
       covered += z < INFINITY;
     }
     w.covered += covered;
+    // Tiles are 64 texels, whole blocks: no two tiles fold into one block.
+    fold_block_ranges(w.out.data(), r.width(), r.x0, r.y0, r.x1, r.y1, m.blocks_);
     return w.out.data();
   });
   for (const Tile& w : tiles) {
@@ -261,27 +271,89 @@ double ShadowMap::bias_at(const glm::dvec3& p, const glm::dvec3& n) const {
   return bias_for(view_->depth(p), std::abs(glm::dot(n, to_light(light_, p))));
 }
 
-double ShadowMap::bias_for(double d, double c) const {
-  const double tan_t = c > 0 ? std::min(10.0, std::sqrt(std::max(0.0, 1 - c * c)) / c) : 10.0;
-  const double w = light_.type == LightType::Directional ? texel_ : texel_ * d;
-  return s_.bias + s_.slope_bias * tan_t * w * reach_ + std::abs(d) * 0x1p-20;  // = ldexp(|d|, -20), without the libm call
+// What a lookup needs of the map, copied into locals once per call so the
+// batch loop below keeps them in registers and vectorizes.
+struct LookupFrame {
+  double ex, ey, ez, fx, fy, fz, rx, ry, rz, ux, uy, uz;  // the light view (View::project)
+  double sx, sy, ox, oy;
+  double lx, ly, lz;  // directional: unit vector towards the light
+  double bias, slope, texel, reach, D;
+};
+
+namespace {
+
+inline double dot3(double ax, double ay, double az, double bx, double by, double bz) {
+  return (ax * bx + ay * by) + az * bz;  // glm::dot's order
 }
 
-uint32_t ShadowMap::lit_count(const glm::dvec3& p, const glm::dvec3& n) const {
-  const bool spot = light_.type == LightType::Spot;
-  if (spot && !in_light_cone(light_, p)) return 0;
-  const double c = glm::dot(n, spot ? to_light(light_, p) : to_light_);
-  if (!(c > 0)) return 0;
-  const ViewPoint v = view_->project(p);  // v.z: the light view's depth of p
-  if (!(v.z > 0) && spot) return 0;
-  const double lim = v.z - bias_for(v.z, c);
+// The bias of shadow_map.h at light depth d and cos θ = c (spot: texels
+// grow with depth).
+template <bool spot>
+inline double bias_of(const LookupFrame& F, double d, double c) {
+  const double tan_t = c > 0 ? std::min(10.0, std::sqrt(std::max(0.0, 1 - c * c)) / c) : 10.0;
+  const double w = spot ? F.texel * d : F.texel;
+  return F.bias + F.slope * tan_t * w * F.reach + std::abs(d) * 0x1p-20;  // = ldexp(|d|, -20), no libm call
+}
+
+// The arithmetic of a lookup before any map read: cos θ (c), the light
+// view's depth (z), the map coordinates and the limit d − bias. Pure
+// arithmetic, so the batch below vectorizes it; whether p can be lit at all
+// (c > 0, spot cone and z > 0, coordinates not NaN) is checked after.
+template <bool spot>
+inline void prepare(const LookupFrame& F, const Light& light, double px, double py, double pz, double nx, double ny,
+                    double nz, double* c_out, double* z_out, double* X, double* Y, double* lim) {
+  double lx = F.lx, ly = F.ly, lz = F.lz;
+  if constexpr (spot) {
+    const glm::dvec3 l = to_light(light, glm::dvec3(px, py, pz));
+    lx = l.x, ly = l.y, lz = l.z;
+  }
+  const double c = dot3(nx, ny, nz, lx, ly, lz);
+  const double dx = px - F.ex, dy = py - F.ey, dz = pz - F.ez;
+  const double z = dot3(dx, dy, dz, F.fx, F.fy, F.fz);
+  double a = dot3(dx, dy, dz, F.rx, F.ry, F.rz), b = dot3(dx, dy, dz, F.ux, F.uy, F.uz);
+  if constexpr (spot) {  // spot maps are perspective, directional ones orthographic
+    a /= z;
+    b /= z;
+  }
+  *c_out = c;
+  *z_out = z;
+  *lim = z - bias_of<spot>(F, z, c);
+  // Clamped before the int conversion (a point far off the map reads its edge).
+  const double x = a * F.sx + F.ox, y = F.oy - b * F.sy;
+  *X = x < -8.0 ? -8.0 : (F.D + 8.0 < x ? F.D + 8.0 : x);  // std::clamp's order: NaN stays
+  *Y = y < -8.0 ? -8.0 : (F.D + 8.0 < y ? F.D + 8.0 : y);
+}
+
+}  // namespace
+
+LookupFrame ShadowMap::frame() const {
+  const View& v = *view_;
+  LookupFrame F;
+  F.ex = v.eye().x, F.ey = v.eye().y, F.ez = v.eye().z;
+  F.fx = v.forward().x, F.fy = v.forward().y, F.fz = v.forward().z;
+  F.rx = v.right().x, F.ry = v.right().y, F.rz = v.right().z;
+  F.ux = v.up().x, F.uy = v.up().y, F.uz = v.up().z;
+  F.sx = v.scale_x(), F.sy = v.scale_y(), F.ox = v.offset_x(), F.oy = v.offset_y();
+  F.lx = to_light_.x, F.ly = to_light_.y, F.lz = to_light_.z;
+  F.bias = s_.bias, F.slope = s_.slope_bias, F.texel = texel_, F.reach = reach_, F.D = double(size_);
+  return F;
+}
+
+double ShadowMap::bias_for(double d, double c) const {
+  return light_.type == LightType::Spot ? bias_of<true>(frame(), d, c) : bias_of<false>(frame(), d, c);
+}
+
+inline uint32_t ShadowMap::count(double X, double Y, double lim) const {
   const Kernel k = kernel_of(s_.pcf);
   const int D = int(size_);
-  // Clamped before the int conversion (a point far off the map reads its edge).
-  const double X = std::clamp(v.x, -8.0, D + 8.0), Y = std::clamp(v.y, -8.0, D + 8.0);
-  if (!(X == X && Y == Y)) return 0;
   const int bx = int(k.odd ? std::floor(X + 0.5) : std::floor(X)) + k.first;
   const int by = int(k.odd ? std::floor(Y + 0.5) : std::floor(Y)) + k.first;
+  const int x0 = std::clamp(bx, 0, D - 1), x1 = std::clamp(bx + k.width - 1, 0, D - 1);
+  const int y0 = std::clamp(by, 0, D - 1), y1 = std::clamp(by + k.width - 1, 0, D - 1);
+  float lo, hi;
+  blocks_.range(x0, y0, x1, y1, &lo, &hi);
+  if (lim <= double(lo)) return levels_;  // every read would pass
+  if (!(lim <= double(hi))) return 0;     // every read would fail
   uint32_t lit = 0;
   for (int dy = 0; dy < k.width; ++dy) {
     const int y = std::clamp(by + dy, 0, D - 1);
@@ -292,6 +364,36 @@ uint32_t ShadowMap::lit_count(const glm::dvec3& p, const glm::dvec3& n) const {
     }
   }
   return lit;
+}
+
+uint32_t ShadowMap::lit_count(const glm::dvec3& p, const glm::dvec3& n) const {
+  uint32_t out;
+  lit_counts(1, &p.x, &p.y, &p.z, &n.x, &n.y, &n.z, &out);
+  return out;
+}
+
+void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const double* pz, const double* nx,
+                           const double* ny, const double* nz, uint32_t* out) const {
+  const LookupFrame F = frame();
+  const bool spot = light_.type == LightType::Spot;
+  constexpr size_t kChunk = 64;
+  double C[kChunk], Z[kChunk], X[kChunk], Y[kChunk], lim[kChunk];
+  for (size_t i0 = 0; i0 < n; i0 += kChunk) {
+    const size_t m = std::min(kChunk, n - i0);
+    if (spot)
+      for (size_t i = 0; i < m; ++i)
+        prepare<true>(F, light_, px[i0 + i], py[i0 + i], pz[i0 + i], nx[i0 + i], ny[i0 + i], nz[i0 + i], &C[i], &Z[i],
+                      &X[i], &Y[i], &lim[i]);
+    else
+      for (size_t i = 0; i < m; ++i)
+        prepare<false>(F, light_, px[i0 + i], py[i0 + i], pz[i0 + i], nx[i0 + i], ny[i0 + i], nz[i0 + i], &C[i], &Z[i],
+                       &X[i], &Y[i], &lim[i]);
+    for (size_t i = 0; i < m; ++i) {
+      bool ok = C[i] > 0 && X[i] == X[i] && Y[i] == Y[i];
+      if (spot) ok = ok && Z[i] > 0 && in_light_cone(light_, {px[i0 + i], py[i0 + i], pz[i0 + i]});
+      out[i0 + i] = ok ? count(X[i], Y[i], lim[i]) : 0;
+    }
+  }
 }
 
 }  // namespace zs

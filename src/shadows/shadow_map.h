@@ -30,6 +30,7 @@
 #include <glm/vec3.hpp>
 
 #include "mesh/tet_mesh.h"  // Bounds
+#include "shadows/depth_blocks.h"
 #include "shadows/light.h"
 #include "shadows/shadow_settings.h"
 #include "surfaces/triangle_mesh.h"
@@ -57,6 +58,8 @@ struct ShadowMapStats {
   double side = 0;              // orthographic: world side of the map's square
 };
 
+struct LookupFrame;  // shadow_map.cpp
+
 class ShadowMap {
  public:
   // Renders the casters (every triangle, both faces) from `light` on
@@ -75,6 +78,10 @@ class ShadowMap {
   uint32_t lit_count(const glm::dvec3& p, const glm::dvec3& n) const;
   uint32_t levels() const { return levels_; }  // k·n
   double lit(const glm::dvec3& p, const glm::dvec3& n) const { return double(lit_count(p, n)) / levels_; }
+  // lit_count of n points at once (coordinates as arrays): the same counts,
+  // with the arithmetic before the map reads vectorized across points.
+  void lit_counts(size_t n, const double* px, const double* py, const double* pz, const double* nx, const double* ny,
+                  const double* nz, uint32_t* out) const;
 
   // Texel (x, y)'s j-th depth (j < depths()); the n-SM as built.
   float depth(uint32_t x, uint32_t y, uint32_t j = 0) const { return md_[(size_t(y) * size_ + x) * n_ + j]; }
@@ -89,6 +96,8 @@ class ShadowMap {
  private:
   void finish(std::vector<float> depths);  // builds the n-SM
   double bias_for(double d, double cos_theta) const;  // bias_at from p's light depth and |N·L|
+  LookupFrame frame() const;  // the map's constants for a lookup
+  uint32_t count(double X, double Y, double lim) const;
   Light light_;
   glm::dvec3 to_light_{0.0};  // directional: unit vector towards the light
   ShadowSettings s_;
@@ -97,6 +106,7 @@ class ShadowMap {
   double texel_ = 0;   // orthographic: world size of a texel; spot: per unit depth
   double reach_ = 1;   // 1 + R of the header comment
   std::vector<float> md_;  // size² × n, texel-major
+  DepthBlocks blocks_;     // exact early out of the test
 };
 
 // Bytes a map of these settings holds (for budgets).

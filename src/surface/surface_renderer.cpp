@@ -13,6 +13,7 @@
 #include "raster/triangle_bins.h"
 #include "raster/zbuffer_tile.h"
 #include "shadows/shadow_rays.h"
+#include "surface/shade_batch.h"
 #include "surfaces/visible_region.h"
 #include "util/bytes_str.h"
 #include "util/memory.h"
@@ -26,6 +27,7 @@ double ms_since(Clock::time_point t) { return std::chrono::duration<double, std:
 
 struct TileState {
   DepthBuffer db;
+  ShadeBatch batch;
   ZBufferScratch scratch;
   std::vector<float> out;
   SurfaceTileTotals totals;
@@ -153,12 +155,14 @@ struct SurfaceRenderer::Impl {
     T.depth_writes += zc.depth_writes;
     w.out.resize(size_t(tw) * th * C);
     const size_t L = rs.lights.size();
-    for (uint32_t y = 0; y < th; ++y)
+    ShadeBatch& b = w.batch;
+    for (uint32_t y = 0; y < th; ++y) {
+      b.n = 0;
       for (uint32_t x = 0; x < tw; ++x) {
         const size_t p = size_t(y) * tw + x;
-        float* o = w.out.data() + p * C;
         const uint32_t id = w.db.id(p);
         if (id == kNoId) {
+          float* o = w.out.data() + p * C;
           o[0] = float(bg_rgb.x);
           o[1] = float(bg_rgb.y);
           o[2] = float(bg_rgb.z);
@@ -166,67 +170,62 @@ struct SurfaceRenderer::Impl {
           for (uint32_t c = 4; c < C; ++c) o[c] = INFINITY;
           continue;
         }
-        ++T.rendered_pixels;
-        shade_pixel(double(r.x0 + x), double(r.y0 + y), pt.source[id], w.db.depth(p), o, T, L);
+        b.X[b.n] = double(r.x0 + x);
+        b.tri[b.n] = pt.source[id];
+        b.zbuf[b.n] = w.db.depth(p);
+        b.pixel[b.n] = uint32_t(p);
+        if (++b.n == kShadeBatch) {
+          shade(double(r.y0 + y), w, T, L);
+          b.n = 0;
+        }
       }
+      if (b.n) shade(double(r.y0 + y), w, T, L);
+    }
     T.ms_tiles += ms_since(t0);
     return w.out.data();
   }
 
-  void shade_pixel(double X, double Y, uint32_t s, double zbuf, float* o, SurfaceTileTotals& T, size_t L) const {
-    glm::dvec3 org, dir;
-    view.ray(X, Y, &org, &dir);
-    const auto& tri = mesh.tris[s];
-    const glm::dvec3 &a = mesh.points[tri[0]], &b = mesh.points[tri[1]], &c = mesh.points[tri[2]];
-    const glm::dvec3 fn = glm::cross(b - a, c - a);
-    // The exact hit of the pixel's ray with the triangle's plane; a ray
-    // parallel to it (a sliver seen edge-on) takes the rasterized depth.
-    const double den = glm::dot(dir, fn);
-    glm::dvec3 p;
-    if (den != 0 && std::isfinite(den)) {
-      p = org + dir * (glm::dot(a - org, fn) / den);
-    } else {
-      p = org + dir * (zbuf * view.ray_length_factor(X, Y));
-    }
-    glm::dvec3 ng = glm::normalize(fn);
-    const bool flipped = glm::dot(ng, dir) > 0;
-    if (flipped) ng = -ng;
-    glm::dvec3 ns = ng;
-    if (rs.shading.model == ShadingModel::Phong) {
-      const double n2 = glm::dot(fn, fn);
-      double wa = glm::dot(glm::cross(b - p, c - p), fn) / n2, wb = glm::dot(glm::cross(c - p, a - p), fn) / n2;
-      wa = std::clamp(wa, 0.0, 1.0);
-      wb = std::clamp(wb, 0.0, 1.0 - wa);
-      const double wc = 1.0 - wa - wb;
-      const glm::dvec3 n = wa * mesh.normals[tri[0]] + wb * mesh.normals[tri[1]] + wc * mesh.normals[tri[2]];
-      const double len = glm::length(n);
-      if (len > 0 && std::isfinite(len)) ns = (flipped ? -n : n) / len;
-    }
-    const glm::dvec3 v = -dir;
-    double diffuse = 0, specular = 0;
+  // The batch's pixels on row Y: hits and normals, each light's lit fraction
+  // (map lookups, shadow rays, or only the cone and facing), Blinn–Phong.
+  void shade(double Y, TileState& w, SurfaceTileTotals& T, size_t L) const {
+    ShadeBatch& b = w.batch;
+    const int n = b.n;
+    const uint32_t C = grid.channels;
+    surface_hits(view, Y, mesh, rs.shading.model, b);
+    T.rendered_pixels += uint64_t(n);
+    double lit[kShadeBatch];
     for (size_t l = 0; l < L; ++l) {
-      double lit = 1;
-      if (shadows) {
-        if (rays) {
-          lit = rays->lit(rs.lights[l], p, ng) ? 1.0 : 0.0;
-          ++T.shadow_rays;
-        } else {
-          lit = maps[l].lit(p, ng);
-          ++T.shadow_tests;
+      const Light& light = rs.lights[l];
+      if (shadows && rays) {
+        for (int i = 0; i < n; ++i)
+          lit[i] = rays->lit(light, {b.px[i], b.py[i], b.pz[i]}, {b.gx[i], b.gy[i], b.gz[i]}) ? 1.0 : 0.0;
+        T.shadow_rays += uint64_t(n);
+      } else if (shadows) {
+        uint32_t cnt[kShadeBatch];
+        maps[l].lit_counts(size_t(n), b.px, b.py, b.pz, b.gx, b.gy, b.gz, cnt);
+        const double levels = maps[l].levels();
+        for (int i = 0; i < n; ++i) lit[i] = double(cnt[i]) / levels;
+        T.shadow_tests += uint64_t(n);
+      } else {
+        for (int i = 0; i < n; ++i) {
+          const glm::dvec3 p(b.px[i], b.py[i], b.pz[i]), g(b.gx[i], b.gy[i], b.gz[i]);
+          lit[i] = in_light_cone(light, p) && glm::dot(g, to_light(light, p)) > 0 ? 1.0 : 0.0;
         }
-      } else if (!in_light_cone(rs.lights[l], p) || !(glm::dot(ng, to_light(rs.lights[l], p)) > 0)) {
-        lit = 0;
       }
-      T.lit_pixels += lit > 0;
-      o[5 + l] = float(lit);
-      add_light(rs.shading, ns, to_light(rs.lights[l], p), v, lit, &diffuse, &specular);
+      for (int i = 0; i < n; ++i) {
+        T.lit_pixels += lit[i] > 0;
+        w.out[size_t(b.pixel[i]) * C + 5 + l] = float(lit[i]);
+      }
+      add_lights(rs.shading, light, lit, b);
     }
-    const glm::dvec3 col = surface_colour(rs.shading, rs.colors[mesh.surface[s]], diffuse, specular);
-    o[0] = float(col.x);
-    o[1] = float(col.y);
-    o[2] = float(col.z);
-    o[3] = 1.f;
-    o[4] = float(view.depth(p));
+    const SurfaceShading& sh = rs.shading;
+    for (int i = 0; i < n; ++i) {
+      float* o = w.out.data() + size_t(b.pixel[i]) * C;
+      const glm::dvec3& base = rs.colors[mesh.surface[b.tri[i]]];
+      for (int k = 0; k < 3; ++k) o[k] = float(std::clamp(base[k] * (sh.ambient + b.diffuse[i]) + b.specular[i], 0.0, 1.0));
+      o[3] = 1.f;
+      o[4] = float(b.depth[i]);
+    }
   }
 };
 

@@ -1,6 +1,7 @@
 // The shadow-map module (src/shadows/): the digest's step-edge table, level
 // counts of PCF(k, n), the fixed patterns, the bias on tilted receivers.
 #include <cmath>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -8,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "shadows/depth_blocks.h"
 #include "shadows/multi_depth.h"
 #include "shadows/shadow_map.h"
 
@@ -214,6 +216,98 @@ TEST(ShadowMaps, EmptyTexelsFacingAndCone) {
   EXPECT_TRUE(in_light_cone(spot, {0.5, 0, 1}));   // 26.6° off the axis
   EXPECT_FALSE(in_light_cone(spot, {0.6, 0, 1}));  // 31.0°
   EXPECT_FALSE(in_light_cone(spot, {0, 0, 0}));
+}
+
+// The block ranges bound every texel of the blocks they cover, exactly.
+TEST(ShadowMaps, DepthBlocksBoundTheirTexels) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> U(0, 10);
+  const uint32_t S = 45;  // not a multiple of the block size
+  std::vector<float> z(S * S);
+  for (float& v : z) v = U(rng) < 2 ? INFINITY : U(rng);
+  DepthBlocks b;
+  b.reset(S);
+  fold_block_ranges(z.data(), S, 0, 0, S, S, b);
+  EXPECT_EQ(b.blocks, 6u);
+  for (int t = 0; t < 300; ++t) {
+    int x0 = int(rng() % S), x1 = int(rng() % S), y0 = int(rng() % S), y1 = int(rng() % S);
+    if (x0 > x1) std::swap(x0, x1);
+    if (y0 > y1) std::swap(y0, y1);
+    float lo, hi, m = INFINITY, M = -INFINITY;
+    b.range(x0, y0, x1, y1, &lo, &hi);
+    // The exact range of the whole blocks the rectangle touches.
+    for (uint32_t y = uint32_t(y0 / 8) * 8; y < std::min(S, uint32_t(y1 / 8 + 1) * 8); ++y)
+      for (uint32_t x = uint32_t(x0 / 8) * 8; x < std::min(S, uint32_t(x1 / 8 + 1) * 8); ++x) {
+        m = std::min(m, z[y * S + x]);
+        M = std::max(M, z[y * S + x]);
+      }
+    ASSERT_EQ(lo, m);
+    ASSERT_EQ(hi, M);
+  }
+  // Dilation: each block's range covers its 3×3 blocks.
+  DepthBlocks d = b;
+  dilate_block_ranges(d);
+  for (uint32_t y = 0; y < 6; ++y)
+    for (uint32_t x = 0; x < 6; ++x)
+      for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) {
+          const int yy = int(y) + j, xx = int(x) + i;
+          if (yy < 0 || xx < 0 || yy >= 6 || xx >= 6) continue;
+          EXPECT_LE(d.min[y * 6 + x], b.min[yy * 6 + xx]);
+          EXPECT_GE(d.max[y * 6 + x], b.max[yy * 6 + xx]);
+        }
+}
+
+// The blocks' early outs (fully lit, fully shadowed) and the batch give the
+// counts of reading every kernel texel and depth, for every configuration.
+TEST(ShadowMaps, EarlyOutsAndBatchGiveTheDirectCounts) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(0, 1);
+  // Rectangles of casters at assorted depths over an empty (+inf) map.
+  std::vector<float> z(D * D, INFINITY);
+  for (int r = 0; r < 12; ++r) {
+    const uint32_t x0 = rng() % D, y0 = rng() % D, w = 1 + rng() % 12, h = 1 + rng() % 12;
+    const float depth = float(1 + 4 * U(rng));
+    for (uint32_t y = y0; y < std::min(D, y0 + h); ++y)
+      for (uint32_t x = x0; x < std::min(D, x0 + w); ++x) z[y * D + x] = std::min(z[y * D + x], depth);
+  }
+  const View v(map_frame(), D, D);
+  struct Config {
+    uint32_t n;
+    DepthSelect sel;
+  };
+  for (Config c : {Config{1, DepthSelect::Max}, Config{2, DepthSelect::Max}, Config{2, DepthSelect::Min},
+                   Config{3, DepthSelect::Max}, Config{4, DepthSelect::Max}})
+    for (uint32_t k : {1u, 4u, 9u, 16u}) {
+      const ShadowMap m = ShadowMap::from_depths(down_z(), map_frame(), D, z, settings(c.n, c.sel, k, 0.01));
+      const int w = k == 16 ? 4 : k == 9 ? 3 : k == 4 ? 2 : 1, first = k == 1 || k == 4 ? 0 : -1;
+      const bool odd = k == 1 || k == 9;
+      std::vector<double> px, py, pz, nx, ny, nz;
+      std::vector<uint32_t> direct;
+      for (int t = 0; t < 2000; ++t) {
+        const double X = -3 + (D + 6) * U(rng), Y = -3 + (D + 6) * U(rng), depth = 6 * U(rng);
+        const glm::dvec3 p = point_at(v, X, Y, depth);
+        // Every read, as shadow_map.h defines the test.
+        const ViewPoint q = v.project(p);
+        const double lim = q.z - m.bias_at(p, kFacing);
+        const double Xc = std::clamp(q.x, -8.0, D + 8.0), Yc = std::clamp(q.y, -8.0, D + 8.0);
+        const int bx = int(odd ? std::floor(Xc + 0.5) : std::floor(Xc)) + first;
+        const int by = int(odd ? std::floor(Yc + 0.5) : std::floor(Yc)) + first;
+        uint32_t lit = 0;
+        for (int dy = 0; dy < w; ++dy)
+          for (int dx = 0; dx < w; ++dx)
+            for (uint32_t j = 0; j < m.depths(); ++j)
+              lit += lim <= double(m.depth(uint32_t(std::clamp(bx + dx, 0, int(D) - 1)),
+                                           uint32_t(std::clamp(by + dy, 0, int(D) - 1)), j));
+        ASSERT_EQ(m.lit_count(p, kFacing), lit) << "n " << c.n << " k " << k << " at " << X << "," << Y;
+        px.push_back(p.x), py.push_back(p.y), pz.push_back(p.z);
+        nx.push_back(kFacing.x), ny.push_back(kFacing.y), nz.push_back(kFacing.z);
+        direct.push_back(lit);
+      }
+      std::vector<uint32_t> batch(direct.size());
+      m.lit_counts(direct.size(), px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(), batch.data());
+      EXPECT_EQ(batch, direct);
+    }
 }
 
 }  // namespace
