@@ -14,6 +14,7 @@
 #include "raster/zbuffer_tile.h"
 #include "shadows/depth_blocks.h"
 #include "shadows/multi_depth.h"
+#include "shadows/tiled_depths.h"
 #include "surfaces/triangle_projection.h"
 
 namespace zs {
@@ -123,27 +124,32 @@ ShadowMap ShadowMap::from_depths(const Light& light, const Camera& frame, uint32
   m.view_ = std::make_shared<View>(frame, size, size);
   m.texel_ = frame.projection == Projection::Orthographic ? frame.height / size
                                                            : 2 * std::tan(frame.fov_y * M_PI / 360.0) / size;
-  m.finish(std::move(depths));
+  TiledDepths centre;
+  tile_depths(depths.data(), size, &centre);
+  m.finish(std::move(centre));
   return m;
 }
 
-void ShadowMap::finish(std::vector<float> depths) {
+void ShadowMap::finish(TiledDepths centre) {
   to_light_ = to_light(light_, glm::dvec3(0.0));  // directional lights: the same everywhere
   n_ = std::clamp<uint32_t>(s_.depths, 1, kMaxDepths);
   levels_ = n_ * std::max<uint32_t>(1, s_.pcf);
   reach_ = 1 + reach_texels(s_);
   if (blocks_.min.empty()) {
     blocks_.reset(size_);
-    fold_block_ranges(depths.data(), size_, 0, 0, size_, size_, blocks_);
+    for (uint32_t ty = 0; ty < centre.tiles(); ++ty)
+      for (uint32_t tx = 0; tx < centre.tiles(); ++tx)
+        if (centre.stored(tx, ty))
+          fold_block_ranges(centre.tile(tx, ty), kMapTile, tx * kMapTile, ty * kMapTile,
+                            std::min(size_, (tx + 1) * kMapTile), std::min(size_, (ty + 1) * kMapTile), blocks_);
   }
   // An n-SM holds neighbours' depths, one texel away.
   if (n_ >= 2) dilate_block_ranges(blocks_);
   if (n_ == 1) {
-    md_ = std::move(depths);
+    md_ = std::move(centre);
     return;
   }
-  md_.assign(size_t(size_) * size_ * n_, 0.f);
-  build_multi_depth(depths.data(), size_, n_, s_.select, md_.data());
+  tiled_multi_depth(centre, n_, s_.select, &md_);
 }
 
 ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, const LightFit& fit0, const Bounds& scene,
@@ -199,14 +205,13 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   std::vector<uint8_t> skip;
   if (s.cull_casters && !scene.empty) skip = non_casters(casters, light, scene, diag, &st.casters_culled);
   project_triangles(casters, *m.view_, {false, true, z_near, skip.empty() ? nullptr : &skip}, &pt, &pc);
-  const TileGrid grid{D, D, 64, 1};
+  const TileGrid grid{D, D, kMapTile, 1};
   TriangleBins bins;
   bin_triangles(grid, pt.verts, pt.corners, &bins);
   st.ms_project = ms_since(t0);
   st.casters = pt.corners.size();
 
   t0 = Clock::now();
-  std::vector<float> depths(size_t(D) * D, INFINITY);
   struct Tile {
     std::vector<double> db;
     ZBufferScratch scratch;
@@ -215,22 +220,26 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
     std::vector<float> out;
   };
   tbb::enumerable_thread_specific<Tile> tiles;
-  struct Copy : TileSink {
-    std::vector<float>* d;
-    uint32_t D;
-    void tile(const TileRect& r, const float* px) override {
-      for (uint32_t y = r.y0; y < r.y1; ++y)
-        std::memcpy(d->data() + size_t(y) * D + r.x0, px + size_t(y - r.y0) * r.width(), r.width() * sizeof(float));
-    }
-  } sink;
-  sink.d = &depths;
-  sink.D = D;
-  // Only tiles with casters are rendered; the rest stay +inf (most of a map
-  // fitted to the receivers in view, once the ground is culled).
+  // Only tiles with casters are rendered and stored; the rest read +inf (most
+  // of a map fitted to the receivers in view, once the ground is culled).
+  TiledDepths centre;
+  centre.reset(D, 1);
   m.blocks_.reset(D);
   std::vector<uint32_t> busy;
   for (uint32_t t = 0; t < grid.count(); ++t)
-    if (bins.end(t) != bins.begin(t)) busy.push_back(t);
+    if (bins.end(t) != bins.begin(t)) {
+      busy.push_back(t);
+      centre.add_tile(t % grid.cols(), t / grid.cols());
+    }
+  struct Copy : TileSink {
+    TiledDepths* c;
+    void tile(const TileRect& r, const float* px) override {
+      float* t = c->tile(r.x0 >> kMapTileShift, r.y0 >> kMapTileShift);
+      for (uint32_t y = 0; y < r.height(); ++y)
+        std::memcpy(t + size_t(y) * kMapTile, px + size_t(y) * r.width(), r.width() * sizeof(float));
+    }
+  } sink;
+  sink.c = &centre;
   run_tiles(grid, busy, threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
     Tile& w = tiles.local();
     w.db.assign(size_t(r.width()) * r.height(), INFINITY);
@@ -258,7 +267,7 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   st.ms_raster = ms_since(t0);
 
   t0 = Clock::now();
-  m.finish(std::move(depths));
+  m.finish(std::move(centre));
   st.ms_multi_depth = ms_since(t0);
   st.bytes = m.bytes();
   st.texel = m.texel_;
@@ -359,7 +368,7 @@ inline uint32_t ShadowMap::count(double X, double Y, double lim) const {
     const int y = std::clamp(by + dy, 0, D - 1);
     for (int dx = 0; dx < k.width; ++dx) {
       const int x = std::clamp(bx + dx, 0, D - 1);
-      const float* z = md_.data() + (size_t(y) * size_ + size_t(x)) * n_;
+      const float* z = md_.texel(uint32_t(x), uint32_t(y));
       for (uint32_t j = 0; j < n_; ++j) lit += lim <= double(z[j]);
     }
   }

@@ -33,6 +33,7 @@
 #include "shadows/depth_blocks.h"
 #include "shadows/light.h"
 #include "shadows/shadow_settings.h"
+#include "shadows/tiled_depths.h"
 #include "surfaces/triangle_mesh.h"
 #include "view/camera.h"
 
@@ -84,17 +85,18 @@ class ShadowMap {
                   const double* nz, uint32_t* out) const;
 
   // Texel (x, y)'s j-th depth (j < depths()); the n-SM as built.
-  float depth(uint32_t x, uint32_t y, uint32_t j = 0) const { return md_[(size_t(y) * size_ + x) * n_ + j]; }
+  float depth(uint32_t x, uint32_t y, uint32_t j = 0) const { return md_.texel(x, y)[j]; }
   uint32_t size() const { return size_; }
   uint32_t depths() const { return n_; }
   const View& view() const { return *view_; }
   // The bias the test applies at p (world units), for tests and docs.
   double bias_at(const glm::dvec3& p, const glm::dvec3& n) const;
   // The kernel's texel offsets, relative to floor(X) or round(X) (see .cpp).
-  uint64_t bytes() const { return md_.size() * sizeof(float); }
+  uint64_t bytes() const { return md_.bytes() + blocks_.min.size() * 2 * sizeof(float); }
+  uint32_t stored_tiles() const { return md_.stored_tiles(); }  // of the n-SM (tiled_depths.h)
 
  private:
-  void finish(std::vector<float> depths);  // builds the n-SM
+  void finish(TiledDepths centre);  // builds the n-SM
   double bias_for(double d, double cos_theta) const;  // bias_at from p's light depth and |N·L|
   LookupFrame frame() const;  // the map's constants for a lookup
   uint32_t count(double X, double Y, double lim) const;
@@ -105,7 +107,7 @@ class ShadowMap {
   uint32_t size_ = 0, n_ = 1, levels_ = 1;
   double texel_ = 0;   // orthographic: world size of a texel; spot: per unit depth
   double reach_ = 1;   // 1 + R of the header comment
-  std::vector<float> md_;  // size² × n, texel-major
+  TiledDepths md_;         // the n-SM, by tiles
   DepthBlocks blocks_;     // exact early out of the test
 };
 

@@ -11,6 +11,7 @@
 
 #include "shadows/depth_blocks.h"
 #include "shadows/multi_depth.h"
+#include "shadows/tiled_depths.h"
 #include "shadows/shadow_map.h"
 
 namespace zs {
@@ -307,6 +308,32 @@ TEST(ShadowMaps, EarlyOutsAndBatchGiveTheDirectCounts) {
       std::vector<uint32_t> batch(direct.size());
       m.lit_counts(direct.size(), px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(), batch.data());
       EXPECT_EQ(batch, direct);
+    }
+}
+
+// The tiled n-SM gives build_multi_depth's dense result at every texel: empty
+// tiles, partial edge tiles and tiles that only border a caster included.
+TEST(ShadowMaps, TiledMultiDepthEqualsTheDensePass) {
+  std::mt19937 rng(5);
+  const uint32_t S = 150;  // 3 × 3 tiles, the last ones partial
+  std::vector<float> z(S * S, INFINITY);
+  for (uint32_t y = 60; y < 70; ++y)  // straddles tile borders
+    for (uint32_t x = 0; x < 130; ++x) z[y * S + x] = float(1 + (rng() % 100) / 10.0);
+  z[149 * S + 149] = 3.f;  // the far corner texel
+  TiledDepths centre;
+  tile_depths(z.data(), S, &centre);
+  EXPECT_EQ(centre.stored_tiles(), 7u);  // tile rows 0 and 1 × columns 0..2 hold the band; (2, 2) the corner
+  for (uint32_t n : {2u, 3u, 4u, 5u, 9u})
+    for (DepthSelect sel : {DepthSelect::Max, DepthSelect::Min}) {
+      std::vector<float> dense(size_t(S) * S * n);
+      build_multi_depth(z.data(), S, n, sel, dense.data());
+      TiledDepths tiled;
+      tiled_multi_depth(centre, n, sel, &tiled);
+      EXPECT_EQ(tiled.stored_tiles(), 9u);
+      for (uint32_t y = 0; y < S; ++y)
+        for (uint32_t x = 0; x < S; ++x)
+          for (uint32_t j = 0; j < n; ++j)
+            ASSERT_EQ(tiled.texel(x, y)[j], dense[(size_t(y) * S + x) * n + j]) << n << " " << x << "," << y << "," << j;
     }
 }
 

@@ -1,0 +1,69 @@
+// A shadow map's depths kept by 64×64-texel tiles, stored only where a tile
+// holds a caster (for an n-SM: also where it borders one, since its texels
+// read their neighbours): every other texel reads +inf. A map fitted to the
+// receivers in view is mostly empty once the ground is culled, so this saves
+// the memory, and the time of clearing it, that a dense map would spend.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "shadows/shadow_settings.h"
+
+namespace zs {
+
+constexpr uint32_t kMapTileShift = 6;
+constexpr uint32_t kMapTile = 1u << kMapTileShift;  // texels per tile side
+constexpr uint32_t kEmptyTile = 0xffffffffu;
+
+class TiledDepths {
+ public:
+  // size × size texels of n depths each, every tile empty.
+  void reset(uint32_t size, uint32_t n);
+  // Gives tile (tx, ty) storage (+inf); returns its first texel. Not
+  // thread-safe: allocate before filling in parallel.
+  float* add_tile(uint32_t tx, uint32_t ty);
+  void reserve_tiles(size_t count) { data_.reserve(count * kMapTile * kMapTile * n_); }
+
+  uint32_t size() const { return size_; }
+  uint32_t depths() const { return n_; }
+  uint32_t tiles() const { return tiles_; }  // per side
+  uint32_t stored_tiles() const { return uint32_t(data_.size() / (size_t(kMapTile) * kMapTile * n_)); }
+  bool stored(uint32_t tx, uint32_t ty) const { return slot_[size_t(ty) * tiles_ + tx] != kEmptyTile; }
+  float* tile(uint32_t tx, uint32_t ty) {
+    return data_.data() + size_t(slot_[size_t(ty) * tiles_ + tx]) * kMapTile * kMapTile * n_;
+  }
+  // Texel (x, y)'s n depths (x, y < size).
+  const float* texel(uint32_t x, uint32_t y) const {
+    const uint32_t s = slot_[size_t(y >> kMapTileShift) * tiles_ + (x >> kMapTileShift)];
+    if (s == kEmptyTile) return empty_;
+    return data_.data() +
+           ((size_t(s) << (2 * kMapTileShift)) + ((y & (kMapTile - 1)) << kMapTileShift) + (x & (kMapTile - 1))) * n_;
+  }
+  // Row y's texels of tile column tx (kMapTile of them; n = 1 maps), or
+  // nullptr where that tile is empty.
+  const float* row(uint32_t tx, uint32_t y) const {
+    const uint32_t s = slot_[size_t(y >> kMapTileShift) * tiles_ + tx];
+    if (s == kEmptyTile) return nullptr;
+    return data_.data() + ((size_t(s) << (2 * kMapTileShift)) + ((y & (kMapTile - 1)) << kMapTileShift)) * n_;
+  }
+  uint64_t bytes() const { return data_.size() * sizeof(float) + slot_.size() * sizeof(uint32_t); }
+
+ private:
+  uint32_t size_ = 0, n_ = 1, tiles_ = 0;
+  std::vector<uint32_t> slot_;  // tiles², kEmptyTile or storage slot
+  std::vector<float> data_;     // slots × kMapTile² × n, texel-major
+  float empty_[16] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY,
+                      INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY};
+};
+
+// A dense size × size map (row-major, one depth per texel) kept by tiles: the
+// tiles with a finite depth.
+void tile_depths(const float* z, uint32_t size, TiledDepths* out);
+
+// The n-SM pass (multi_depth.h) over a tiled 1-depth map: every stored tile
+// and its eight neighbours, with the same values build_multi_depth gives.
+void tiled_multi_depth(const TiledDepths& centre, uint32_t n, DepthSelect select, TiledDepths* out);
+
+}  // namespace zs
