@@ -143,8 +143,9 @@ void ShadowMap::finish(TiledDepths centre) {
           fold_block_ranges(centre.tile(tx, ty), kMapTile, tx * kMapTile, ty * kMapTile,
                             std::min(size_, (tx + 1) * kMapTile), std::min(size_, (ty + 1) * kMapTile), blocks_);
   }
-  // An n-SM holds neighbours' depths, one texel away.
-  if (n_ >= 2) dilate_block_ranges(blocks_);
+  // A lookup reads beyond its first texel (a wider kernel, an n-SM's
+  // neighbours: at most 4 texels): one block's widening covers it.
+  if (n_ >= 2 || s_.pcf > 1) dilate_block_ranges(blocks_);
   if (n_ == 1) {
     md_ = std::move(centre);
     return;
@@ -352,17 +353,12 @@ double ShadowMap::bias_for(double d, double c) const {
   return light_.type == LightType::Spot ? bias_of<true>(frame(), d, c) : bias_of<false>(frame(), d, c);
 }
 
+// Reads every texel and depth of the kernel (the early outs left it open).
 inline uint32_t ShadowMap::count(double X, double Y, double lim) const {
   const Kernel k = kernel_of(s_.pcf);
   const int D = int(size_);
   const int bx = int(k.odd ? std::floor(X + 0.5) : std::floor(X)) + k.first;
   const int by = int(k.odd ? std::floor(Y + 0.5) : std::floor(Y)) + k.first;
-  const int x0 = std::clamp(bx, 0, D - 1), x1 = std::clamp(bx + k.width - 1, 0, D - 1);
-  const int y0 = std::clamp(by, 0, D - 1), y1 = std::clamp(by + k.width - 1, 0, D - 1);
-  float lo, hi;
-  blocks_.range(x0, y0, x1, y1, &lo, &hi);
-  if (lim <= double(lo)) return levels_;  // every read would pass
-  if (!(lim <= double(hi))) return 0;     // every read would fail
   uint32_t lit = 0;
   for (int dy = 0; dy < k.width; ++dy) {
     const int y = std::clamp(by + dy, 0, D - 1);
@@ -387,6 +383,14 @@ void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const d
   const bool spot = light_.type == LightType::Spot;
   constexpr size_t kChunk = 64;
   double C[kChunk], Z[kChunk], X[kChunk], Y[kChunk], lim[kChunk];
+  uint32_t cls[kChunk];
+  constexpr uint32_t kOpen = 0xffffffffu;
+  const Kernel k = kernel_of(s_.pcf);
+  // floor(X + 0.5) for odd kernels; floor(X + 0) = floor(X) (−0 → +0 converts to the same int).
+  const double half = k.odd ? 0.5 : 0.0;
+  const int Dm = int(size_) - 1, nb = int(blocks_.blocks);
+  const float *bmin = blocks_.min.data(), *bmax = blocks_.max.data();
+  const uint32_t levels = levels_;
   for (size_t i0 = 0; i0 < n; i0 += kChunk) {
     const size_t m = std::min(kChunk, n - i0);
     if (spot)
@@ -397,10 +401,25 @@ void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const d
       for (size_t i = 0; i < m; ++i)
         prepare<false>(F, light_, px[i0 + i], py[i0 + i], pz[i0 + i], nx[i0 + i], ny[i0 + i], nz[i0 + i], &C[i], &Z[i],
                        &X[i], &Y[i], &lim[i]);
+    // The blocks decide most points: all pass, all fail, or read the map.
+    // The block of the kernel's first (clamped) texel bounds the whole kernel:
+    // the blocks were widened by one (8 texels) when it reaches beyond it.
     for (size_t i = 0; i < m; ++i) {
-      bool ok = C[i] > 0 && X[i] == X[i] && Y[i] == Y[i];
-      if (spot) ok = ok && Z[i] > 0 && in_light_cone(light_, {px[i0 + i], py[i0 + i], pz[i0 + i]});
-      out[i0 + i] = ok ? count(X[i], Y[i], lim[i]) : 0;
+      const bool ok = (C[i] > 0) & (X[i] == X[i]) & (Y[i] == Y[i]);
+      double xs = X[i] == X[i] ? X[i] : 0.0, ys = Y[i] == Y[i] ? Y[i] : 0.0;  // no NaN into the int conversion
+      int bx = int(std::floor(xs + half)) + k.first, by = int(std::floor(ys + half)) + k.first;
+      bx = bx < 0 ? 0 : (bx > Dm ? Dm : bx);
+      by = by < 0 ? 0 : (by > Dm ? Dm : by);
+      const int blk = (by >> kDepthBlockShift) * nb + (bx >> kDepthBlockShift);
+      const double lo = bmin[blk], hi = bmax[blk];
+      uint32_t r = lim[i] <= hi ? kOpen : 0u;
+      r = lim[i] <= lo ? levels : r;
+      cls[i] = ok ? r : 0u;
+    }
+    for (size_t i = 0; i < m; ++i) {
+      uint32_t r = cls[i];
+      if (spot && r != 0 && !(Z[i] > 0 && in_light_cone(light_, {px[i0 + i], py[i0 + i], pz[i0 + i]}))) r = 0;
+      out[i0 + i] = r == kOpen ? count(X[i], Y[i], lim[i]) : r;
     }
   }
 }
