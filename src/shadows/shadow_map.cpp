@@ -130,6 +130,20 @@ ShadowMap ShadowMap::from_depths(const Light& light, const Camera& frame, uint32
   return m;
 }
 
+ShadowMap ShadowMap::from_tiles(const Light& light, const Camera& frame, TiledDepths centre, const ShadowSettings& s,
+                               DepthBlocks blocks) {
+  ShadowMap m;
+  m.light_ = light;
+  m.s_ = s;
+  m.size_ = centre.size();
+  m.view_ = std::make_shared<View>(frame, m.size_, m.size_);
+  m.texel_ = frame.projection == Projection::Orthographic ? frame.height / m.size_
+                                                           : 2 * std::tan(frame.fov_y * M_PI / 360.0) / m.size_;
+  m.blocks_ = std::move(blocks);
+  m.finish(std::move(centre));
+  return m;
+}
+
 void ShadowMap::finish(TiledDepths centre) {
   to_light_ = to_light(light_, glm::dvec3(0.0));  // directional lights: the same everywhere
   n_ = std::clamp<uint32_t>(s_.depths, 1, kMaxDepths);
@@ -153,10 +167,7 @@ void ShadowMap::finish(TiledDepths centre) {
   tiled_multi_depth(centre, n_, s_.select, &md_);
 }
 
-ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, const LightFit& fit0, const Bounds& scene,
-                           const ShadowSettings& s, int threads, ShadowMapStats* stats) {
-  ShadowMapStats st;
-  const uint32_t D = s.map_size;
+Camera shadow_map_frame(const Light& light, const LightFit& fit0, const Bounds& scene, uint32_t D, double* z_near_out) {
   const double diag = std::max(scene.empty ? 1.0 : scene.diagonal(), 1e-300);
   Camera cam;
   double z_near = 0;
@@ -193,6 +204,17 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
     cam.fov_y = light.fov_deg;
     z_near = 1e-6 * (diag + glm::length(light.position - scene.centre()));
   }
+  *z_near_out = z_near;
+  return cam;
+}
+
+ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, const LightFit& fit0, const Bounds& scene,
+                           const ShadowSettings& s, int threads, ShadowMapStats* stats) {
+  ShadowMapStats st;
+  const uint32_t D = s.map_size;
+  const double diag = std::max(scene.empty ? 1.0 : scene.diagonal(), 1e-300);
+  double z_near = 0;
+  const Camera cam = shadow_map_frame(light, fit0, scene, D, &z_near);
   ShadowMap m;
   m.light_ = light;
   m.s_ = s;

@@ -68,6 +68,10 @@ class ShadowMap {
   // ignored for spot lights). `scene`: the casters' bounds.
   static ShadowMap build(const TriangleMesh& casters, const Light& light, const LightFit& fit, const Bounds& scene,
                          const ShadowSettings& s, int threads, ShadowMapStats* stats = nullptr);
+  // A map from depths already kept by tiles (a 1-depth map) in a given frame;
+  // `blocks` are its block ranges when the caller folded them (else empty).
+  static ShadowMap from_tiles(const Light& light, const Camera& frame, TiledDepths centre, const ShadowSettings& s,
+                              DepthBlocks blocks = {});
   // A map from given depths (size·size, row-major; +inf = no caster) in a
   // given frame: tests and synthetic maps.
   static ShadowMap from_depths(const Light& light, const Camera& frame, uint32_t size, std::vector<float> depths,
@@ -110,6 +114,12 @@ class ShadowMap {
   TiledDepths md_;         // the n-SM, by tiles
   DepthBlocks blocks_;     // exact early out of the test
 };
+
+// The frame of a map: directional lights an orthographic square covering
+// `fit` (or the scene's box when fit is empty) plus a margin, its eye plane
+// behind every caster; spot lights a perspective view of the cone.
+// `z_near`: the depth below which geometry is clipped.
+Camera shadow_map_frame(const Light& light, const LightFit& fit, const Bounds& scene, uint32_t size, double* z_near);
 
 // Bytes a map of these settings holds (for budgets).
 uint64_t shadow_map_bytes(const ShadowSettings& s);

@@ -1,0 +1,46 @@
+// Orthographic shadow maps of sphere sets, one per ambient-occlusion
+// direction (sphere digest §2.4.5), and the AO they give a point (§2.4.6).
+//
+// A map looks along −ω (light arriving from ω) and is fitted to the set's
+// bounding box rotated into that frame, so it covers the whole set whatever
+// the viewer. Each sphere is drawn as
+//   - its centre disc (Tarini et al.'s trick, the default): the silhouette
+//     disc at the centre's depth. A point on a sphere that faces ω is always
+//     in front of its own disc, so it cannot shadow itself; or
+//   - its impostor: the exact front surface, depth c − √(r² − ρ²). Tighter
+//     for thin gaps, but a point near its own silhouette reads the nearer
+//     surface of neighbouring texels: it needs a slope bias.
+// For spheres that do not overlap, a point on one sphere is blocked by
+// another's disc exactly when the ray towards ω meets that sphere, so both
+// converge to exact visibility as the map grows.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "shadows/shadow_map.h"
+
+namespace zs {
+
+enum class SphereDepth { CentreDisc, Impostor };
+
+struct SphereMapStats {
+  double ms = 0;
+  uint64_t texels_written = 0;  // disc texels, over all spheres
+};
+
+// The map for direction `omega` (unit, towards the light) of spheres
+// (centres, radii), `size`² texels; `s` gives the bias (world units) for the
+// lookups (depths and pcf are used as given, normally 1 and 1).
+ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii,
+                           const glm::dvec3& omega, uint32_t size, SphereDepth mode, const ShadowSettings& s,
+                           int threads, SphereMapStats* stats = nullptr);
+
+// AO(P) = Σ_k V_k(P)·max(0, N·ω_k) / Σ_k max(0, N·ω_k), V_k the lit fraction
+// of map k (built for dirs[k]); N unit. 1 when no direction faces N.
+double ambient_occlusion(const std::vector<ShadowMap>& maps, const std::vector<glm::dvec3>& dirs, const glm::dvec3& p,
+                         const glm::dvec3& n);
+
+}  // namespace zs
