@@ -96,6 +96,8 @@ void add_reference_command(CLI::App& app) {
   cmd->callback([a, out, stats] {
     SceneInput in = a->load();
     if (in.scene.kind == SceneKind::Spheres) {
+      if (in.scene.spheres.ao.directions)
+        throw std::runtime_error(a->input + ": the reference does not compute ambient occlusion yet (remove 'ao')");
       reference_spheres(in, *out, *stats, in.scene.settings.threads);
       return;
     }

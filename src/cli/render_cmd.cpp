@@ -161,7 +161,13 @@ void write_sphere_stats(const std::string& path, const SphereStats& S, const Sce
         {"pyramid", V.ms_pyramid},
         {"binning", S.ms_binning},
         {"grid", S.ms_grid},
+        {"ao_maps", S.ms_ao_maps},
         {"load", in.ms_load}}},
+      {"ao",
+       {{"directions", in.scene.spheres.ao.directions},
+        {"map_size", in.scene.spheres.ao.map_size},
+        {"depth", in.scene.spheres.ao.impostor_depth ? "impostor" : "disc"},
+        {"map_bytes", S.ao_map_bytes}}},
       {"spheres", {{"total", S.spheres}, {"invalid", S.invalid}, {"skipped_by_reader", in.spheres.invalid}}},
       {"culling",
        {{"enabled", in.scene.spheres.culling},
@@ -228,11 +234,13 @@ void run_spheres(SceneInput& in, const std::string& out_path, const std::string&
   const auto t0 = Clock::now();
   const SphereGrid g = build_sphere_grid(in.spheres, srs.grid);
   const double ms_grid = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  const TileGrid grid{rs.width, rs.height, rs.tile_size, 5};
+  const TileGrid grid{rs.width, rs.height, rs.tile_size, sphere_channels(srs)};
+  const std::vector<std::string> names =
+      srs.ao.directions ? std::vector<std::string>{"R", "G", "B", "A", "Z", "AO"} : std::vector<std::string>{};
   const uint64_t held = sphere_set_bytes(in.spheres) + colors.size() * sizeof(glm::vec4);
   if (render_mpi_enabled()) {
     std::unique_ptr<ImageTileWriter> w;
-    if (render_mpi_rank() == 0) w = std::make_unique<ImageTileWriter>(out_path, grid, compression);
+    if (render_mpi_rank() == 0) w = std::make_unique<ImageTileWriter>(out_path, grid, compression, names);
     srs.progress = false;
     SphereRenderer r(in.spheres, colors, g, srs,
                      held + (w ? w->buffer_bytes_estimate() : 0) + render_mpi_message_bytes(grid, srs.threads));
@@ -250,7 +258,7 @@ void run_spheres(SceneInput& in, const std::string& out_path, const std::string&
                 (unsigned long long)st.rendered_pixels, st.ms_total);
     return;
   }
-  ImageTileWriter writer(out_path, grid, compression);
+  ImageTileWriter writer(out_path, grid, compression, names);
   std::vector<double> frame_ms;
   auto renderer = render_frames<SphereRenderer>(
       frames, writer,

@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include "shadows/ao_directions.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene_json.h"
+#include "shadows/ao_directions.h"
 
 namespace zs {
 
@@ -122,6 +125,38 @@ void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
     coef("specular", &S.specular, 1);
     coef("shininess", &S.shininess, 10000);
   }
+  if (j.contains("ao")) {
+    const json& a = j["ao"];
+    check_keys(c, a, "ao", {"directions", "map_size", "bias", "depth", "occluders"});
+    SphereAo& A = sp.ao;
+    A.directions = 66;
+    if (a.contains("directions")) {
+      const json& d = a["directions"];
+      if (!d.is_number_unsigned() || !valid_direction_count(d.get<uint64_t>()) || d.get<uint64_t>() > 16386)
+        c.fail("ao.directions must be 6, 18, 66, 258, 1026, 4098 or 16386 (2 + 4^(s+1))");
+      A.directions = d.get<uint32_t>();
+    }
+    if (a.contains("map_size")) {
+      const json& m = a["map_size"];
+      if (!m.is_number_unsigned() || m.get<uint64_t>() < 16 || m.get<uint64_t>() > 16384)
+        c.fail("ao.map_size must be an integer from 16 to 16384");
+      A.map_size = m.get<uint32_t>();
+    }
+    if (a.contains("bias")) {
+      A.bias = num(c, a["bias"], "ao.bias");
+      if (!(A.bias >= 0) || !std::isfinite(A.bias)) c.fail("ao.bias must be >= 0 (world units)");
+    }
+    if (a.contains("depth")) {
+      const json& d = a["depth"];
+      if (!d.is_string() || (d != "disc" && d != "impostor")) c.fail("ao.depth must be \"disc\" or \"impostor\"");
+      A.impostor_depth = d == "impostor";
+    }
+    if (a.contains("occluders")) {
+      const json& o = a["occluders"];
+      if (!o.is_string() || (o != "opaque" && o != "alpha")) c.fail("ao.occluders must be \"opaque\" or \"alpha\"");
+      if (o == "alpha") c.fail("ao.occluders \"alpha\" is not implemented yet; use \"opaque\"");
+    }
+  }
   if (j.contains("render")) {
     const json& r = j["render"];
     check_keys(c, r, "render",
@@ -158,6 +193,7 @@ void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
     if (r.contains("memory_budget_mb"))
       s->settings.memory_budget_bytes = uint64_t(memory_budget_mb(c, r["memory_budget_mb"]) * 1048576.0);
   }
+  if (sp.ao.directions && sp.mode != SphereMode::Opaque) c.fail("ao needs render.mode \"opaque\"");
 }
 
 }  // namespace
@@ -173,7 +209,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     c.fail(std::string("invalid JSON: ") + e.what());
   }
   check_keys(c, j, "scene", {"mesh", "spheres", "surfaces", "image", "camera", "transfer_function", "shading", "render",
-                             "ground", "lights", "shadows"});
+                             "ground", "lights", "shadows", "ao"});
   Scene s;
   RenderSettings& rs = s.settings;
 
@@ -183,6 +219,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   if (!j.contains("surfaces"))
     for (const char* k : {"ground", "lights", "shadows"})
       if (j.contains(k)) c.fail(std::string("'") + k + "' is for surface scenes");
+  if (j.contains("ao") && !j.contains("spheres")) c.fail("'ao' is for sphere scenes");
   if (j.contains("surfaces")) {
     s.kind = SceneKind::Surfaces;
     if (j.contains("transfer_function")) c.fail("'transfer_function' is not for surface scenes");
@@ -312,6 +349,7 @@ SphereRenderSettings sphere_render_settings(const RenderSettings& common, const 
   for (int k = 0; k < 4; ++k) r.background[k] = common.background[k];
   r.camera = common.camera;
   r.shading = sp.shading;
+  r.ao = sp.ao;
   r.mode = sp.mode;
   r.front_surfaces_only = sp.front_surfaces_only;
   r.tolerance = sp.tolerance;

@@ -26,6 +26,7 @@ struct SphereScene {
   bool has_color_mode = false;  // false: default_color_mode of the set
   SphereColorMode color = SphereColorMode::Element;
   Shading shading;
+  SphereAo ao;                       // the `ao` block; directions 0: off
   SphereMode mode = SphereMode::Opaque;
   bool front_surfaces_only = false;  // render.surfaces: "front"
   double tolerance = 8;              // render.tolerance

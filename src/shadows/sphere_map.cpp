@@ -26,6 +26,7 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
   Bounds box;
   for (size_t i = 0; i < centres.size(); ++i) {
     const glm::dvec3 lo = centres[i] - glm::dvec3(radii[i]), hi = centres[i] + glm::dvec3(radii[i]);
+    if (!(radii[i] > 0) || !std::isfinite(lo.x + lo.y + lo.z + hi.x + hi.y + hi.z)) continue;  // not drawn
     box.lo = box.empty ? lo : glm::min(box.lo, lo);
     box.hi = box.empty ? hi : glm::max(box.hi, hi);
     box.empty = false;

@@ -16,6 +16,8 @@
 #include "raster/depth_buffer.h"
 #include "raster/sphere_span.h"
 #include "raster/tile_loop.h"
+#include "shadows/ao_directions.h"
+#include "shadows/sphere_map.h"
 #include "spheres/sphere_shading.h"
 #include "sprites/translucent_tile.h"
 #include "util/bytes_str.h"
@@ -53,9 +55,11 @@ struct alignas(128) TileState {
 };
 
 // Per-pixel bytes of a tile in flight: depth and id, output.
-constexpr uint64_t kTilePixelBytes = 12 + 20;
+constexpr uint64_t kTilePixelBytes = 12;  // depth and id; plus 4 per output channel
 
 }  // namespace
+
+uint32_t sphere_channels(const SphereRenderSettings& rs) { return rs.ao.directions ? 6 : 5; }
 
 uint64_t sphere_set_bytes(const SphereSet& s) {
   return s.centres.size() * sizeof(glm::dvec3) + s.radii.size() * 8 + s.scalars.size() * 8 +
@@ -76,6 +80,9 @@ struct SphereRenderer::Impl {
   tbb::enumerable_thread_specific<TileState> states;
   uint64_t kbuf_bytes = 0;
   static constexpr uint64_t kMaxKbufBytes = uint64_t(512) << 20;
+  // Ambient occlusion: the directions and one map each (empty: off).
+  std::vector<glm::dvec3> ao_dirs;
+  std::vector<ShadowMap> ao_maps;
 
   Impl(const SphereSet& spheres, const std::vector<glm::vec4>& c, const SphereGrid& grid_, const SphereRenderSettings& settings,
        uint64_t extra_bytes)
@@ -85,7 +92,7 @@ struct SphereRenderer::Impl {
     if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
     if (rs.tile_size < 1) throw std::runtime_error("tile size must be at least 1 pixel");
     if (colors.size() != s.size()) throw std::runtime_error("one colour per sphere is needed");
-    grid = TileGrid{rs.width, rs.height, rs.tile_size, 5};
+    grid = TileGrid{rs.width, rs.height, rs.tile_size, sphere_channels(rs)};
     if (uint64_t(grid.cols()) * grid.rows() >= (uint64_t(1) << 32))
       throw std::runtime_error("too many tiles; use a larger tile size");
     const int threads = std::max(1, rs.threads);
@@ -96,9 +103,9 @@ struct SphereRenderer::Impl {
     S.invalid = g.invalid;
     S.tiles = grid.count();
     S.tile_size = rs.tile_size;
-    const uint64_t tile_state = uint64_t(rs.tile_size) * rs.tile_size * kTilePixelBytes;
+    const uint64_t tile_state = uint64_t(rs.tile_size) * rs.tile_size * (kTilePixelBytes + 4 * grid.channels);
     uint64_t shared = extra_bytes + g.bytes() + uint64_t(threads) * tile_state +
-                      relay_queue_tiles(grid, threads) * uint64_t(rs.tile_size) * rs.tile_size * 20;
+                      relay_queue_tiles(grid, threads) * uint64_t(rs.tile_size) * rs.tile_size * 4 * grid.channels;
     auto check = [&](uint64_t need) {
       if (need > budget)
         throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " +
@@ -106,6 +113,7 @@ struct SphereRenderer::Impl {
                                  std::to_string(s.size()) + " spheres (needs more than " + bytes_str(need) + ")");
     };
     check(shared + s.size() * 4);
+    if (rs.ao.directions) build_ao(threads, shared, check);
 
     // Translucent modes: only opaque spheres hide others (culling stays
     // lossless), and each thread holds a tile's translucent state.
@@ -361,9 +369,36 @@ struct SphereRenderer::Impl {
     return ts.out.data();
   }
 
+  // One map per AO direction, over every drawable sphere (the maps do not
+  // depend on the viewer, so none of the view's culling applies).
+  template <class Check>
+  void build_ao(int threads, uint64_t shared, const Check& check) {
+    if (rs.mode != SphereMode::Opaque) throw std::runtime_error("ao needs render.mode \"opaque\"");
+    ao_dirs = ao_directions(rs.ao.directions);
+    // Worst case: every tile of every map stored.
+    check(shared + uint64_t(rs.ao.directions) * rs.ao.map_size * rs.ao.map_size * 4);
+    double rmin = INFINITY;
+    for (double r : s.radii)
+      if (r > 0 && std::isfinite(r)) rmin = std::min(rmin, r);
+    ShadowSettings ss;
+    ss.map_size = rs.ao.map_size;
+    ss.bias = rs.ao.bias >= 0 ? rs.ao.bias : (std::isfinite(rmin) ? 0.01 * rmin : 0.0);
+    ss.slope_bias = rs.ao.impostor_depth ? 1.5 : 0.0;  // discs cannot shadow their own sphere
+    const auto t = Clock::now();
+    for (const glm::dvec3& d : ao_dirs) {
+      SphereMapStats ms;
+      ao_maps.push_back(build_sphere_map(s.centres, s.radii, d, rs.ao.map_size,
+                                         rs.ao.impostor_depth ? SphereDepth::Impostor : SphereDepth::CentreDisc, ss,
+                                         threads, &ms));
+      setup.ao_map_bytes += ao_maps.back().bytes();
+    }
+    setup.ms_ao_maps = ms_since(t);
+  }
+
   void resolve(TileState& ts, const TileRect& r) {
     const uint32_t w = r.width(), h = r.height();
-    ts.out.resize(size_t(w) * h * 5);
+    const uint32_t C = grid.channels;
+    ts.out.resize(size_t(w) * h * C);
     float* out = ts.out.data();
     const double* bg = rs.background;
     // Neighbouring pixels mostly show the same sphere: its set-up is kept
@@ -375,11 +410,11 @@ struct SphereRenderer::Impl {
     for (uint32_t y = 0; y < h; ++y)
       for (uint32_t x = 0; x < w; ++x) {
         const size_t p = size_t(y) * w + x;
-        float* o = out + p * 5;
+        float* o = out + p * C;
         const uint32_t id = ts.depth.id(p);
         if (id == kNoId) {
           for (int k = 0; k < 4; ++k) o[k] = float(bg[k]);
-          o[4] = INFINITY;
+          for (uint32_t k = 4; k < C; ++k) o[k] = INFINITY;
           continue;
         }
         const double X = double(r.x0 + x), Y = double(r.y0 + y);
@@ -399,7 +434,15 @@ struct SphereRenderer::Impl {
         n = glm::normalize(glm::dvec3(n.x, n.y, -n.z));
         const glm::dvec3 v = view.perspective() ? glm::normalize(glm::dvec3(-P.x, -P.y, P.z)) : glm::dvec3(0, 0, 1);
         const glm::vec4& col = colors[id];
-        const glm::dvec3 rgb = shade(rs.shading, glm::dvec3(col.r, col.g, col.b), n, v);
+        glm::dvec3 rgb = shade(rs.shading, glm::dvec3(col.r, col.g, col.b), n, v);
+        if (!ao_maps.empty()) {
+          // World point and normal (camera space x right, y up, z forward).
+          const glm::dvec3 Pw = view.eye() + P.x * view.right() + P.y * view.up() + P.z * view.forward();
+          const glm::dvec3 Nw = glm::normalize(n.x * view.right() + n.y * view.up() - n.z * view.forward());
+          const double ao = ambient_occlusion(ao_maps, ao_dirs, Pw, Nw);
+          rgb *= ao;  // final colour = AO × shaded colour (digest §2.4.6)
+          o[5] = float(ao);
+        }
         o[0] = float(rgb.r), o[1] = float(rgb.g), o[2] = float(rgb.b), o[3] = 1.f;  // opaque: alpha ignored
         o[4] = float(hit.t);
         ++ts.stats.rendered_pixels;

@@ -57,5 +57,7 @@ class SphereRenderer : public TiledRenderer {
 
 // Bytes the set itself holds (centres, radii, scalars, colours), for budgets.
 uint64_t sphere_set_bytes(const SphereSet& s);
+// Channels of a tile: R, G, B, A, Z, then AO when ambient occlusion is on.
+uint32_t sphere_channels(const SphereRenderSettings& rs);
 
 }  // namespace zs

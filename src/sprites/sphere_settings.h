@@ -19,11 +19,21 @@ enum class SphereMode { Opaque, Sorted, Peel, DualPeel, Weighted };
 const char* to_string(SphereMode m);
 bool parse_sphere_mode(const std::string& s, SphereMode* out);
 
+// Ambient occlusion (sphere digest §2.4; docs/spheres.md): one orthographic
+// map per direction, AO per visible pixel. Off when directions is 0.
+struct SphereAo {
+  uint32_t directions = 0;  // 6, 18, 66, 258, ... (shadows/ao_directions.h)
+  uint32_t map_size = 1024;
+  double bias = -1;         // world units; < 0: 1 % of the smallest radius
+  bool impostor_depth = false;  // maps of exact front surfaces instead of centre discs
+};
+
 struct SphereRenderSettings {
   uint32_t width = 512, height = 512;
   double background[4] = {0, 0, 0, 0};  // premultiplied RGBA
   Camera camera;
   Shading shading;
+  SphereAo ao;
   SphereMode mode = SphereMode::Opaque;
   // Translucent modes: one fragment per sphere and ray (the visible surface)
   // instead of two (entry and exit); the incomplete-image stop once

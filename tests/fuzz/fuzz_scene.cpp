@@ -40,6 +40,9 @@ void render_spheres(const zs::Scene& scene) {
   rs.threads = 1;
   rs.progress = false;
   rs.tile_size = 8;
+  // AO as parsed, its maps kept small (their cost is not what is fuzzed here).
+  rs.ao.map_size = std::min(rs.ao.map_size, 64u);
+  if (rs.ao.directions > 66) rs.ao.directions = 66;
   // rs.mode, surfaces, tolerance and max_layers as the scene says: every
   // translucent mode runs too (the transfer function gives mixed alphas).
   struct Discard : TileSink {

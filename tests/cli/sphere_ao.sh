@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# Ambient occlusion in sphere scenes (`ao` block, docs/spheres.md): the EXR has
+# an AO channel in [0, 1] on spheres and +inf elsewhere; colour = AO × the
+# colour without AO; an isolated sphere has AO >= 0.99 over every pixel, and a
+# sphere with close neighbours is darker where they are; threads and tiles
+# change no bit; bad `ao` blocks fail in one line, naming the file, with no
+# output. Skipped (77) without a python3 that has numpy and OpenImageIO.
+set -u
+zsweep=$1; src=$2
+py=""
+for c in /usr/bin/python3 python3; do
+  if command -v "$c" >/dev/null && "$c" -c 'import numpy, OpenImageIO' 2>/dev/null; then py=$c; break; fi
+done
+[[ -n "$py" ]] || { echo "SKIP: no python3 with numpy and OpenImageIO"; exit 77; }
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail=0
+printf '0 0 0 1\n' >"$tmp/one.sph"
+# A sphere with six touching neighbours around its equator and one above.
+{ echo "0 0 0 1"; for a in 0 60 120 180 240 300; do
+    awk -v a="$a" 'BEGIN { t = a * 3.14159265358979 / 180; printf "%.9f 0 %.9f 0.9\n", 1.95 * cos(t), 1.95 * sin(t) }'
+  done; echo "0 1.95 0 0.9"; } >"$tmp/crowd.sph"
+scene() {  # name spheres ao-block [extra]
+  printf '{"spheres": "%s", "image": {"width": 96, "height": 80}, "camera": {"projection": "perspective", "eye": [0.4, 3, 6], "target": [0, 0, 0], "fov_y": 40}%s%s}\n' \
+    "$2" "${3:+, \"ao\": $3}" "${4:-}" >"$tmp/$1.json"
+  echo "$tmp/$1.json"
+}
+run() { "$zsweep" render "$@" >/dev/null 2>"$tmp/err" || { echo "FAIL render $*: $(cat "$tmp/err")"; fail=1; }; }
+
+run "$(scene one "$tmp/one.sph" '{"directions": 66, "map_size": 256}')" -o "$tmp/one.exr" --threads 2
+run "$(scene crowd "$tmp/crowd.sph" '{"directions": 66, "map_size": 512}')" -o "$tmp/crowd.exr" --threads 2
+run "$(scene crowd_imp "$tmp/crowd.sph" '{"directions": 18, "map_size": 512, "depth": "impostor"}')" -o "$tmp/crowd_imp.exr"
+run "$(scene crowd_plain "$tmp/crowd.sph" '')" -o "$tmp/crowd_plain.exr"
+for t in "1 64" "2 16" "3 33"; do
+  set -- $t
+  run "$tmp/crowd.json" -o "$tmp/crowd_t$1.exr" --threads "$1" --tile-size "$2"
+done
+"$py" - "$tmp" <<'PY' || fail=1
+import sys, numpy as np, OpenImageIO as oiio
+d = sys.argv[1]
+def read(n):
+    i = oiio.ImageInput.open(f"{d}/{n}.exr")
+    names = list(i.spec().channelnames)
+    a = i.read_image("float")
+    i.close()
+    return names, a
+bad = 0
+names, one = read("one")
+if names != ["R", "G", "B", "A", "Z", "AO"]:
+    print("FAIL channels", names); bad = 1
+ao = one[..., 5]
+on = one[..., 3] > 0
+if not (np.all(np.isinf(ao[~on])) and on.sum() > 500):
+    print("FAIL AO must be +inf off the sphere", on.sum()); bad = 1
+if ao[on].min() < 0.99:
+    print("FAIL isolated sphere AO min", ao[on].min()); bad = 1
+_, crowd = read("crowd")
+_, imp = read("crowd_imp")
+_, plain = read("crowd_plain")
+a = crowd[..., 5]
+on = crowd[..., 3] > 0
+if not (0 <= a[on].min() and a[on].max() <= 1 and a[on].min() < 0.6 and a[on].max() > 0.9):
+    print("FAIL crowd AO range", a[on].min(), a[on].max()); bad = 1
+if np.abs(imp[..., 5][on] - a[on]).mean() > 0.1:
+    print("FAIL impostor and disc maps disagree", np.abs(imp[..., 5][on] - a[on]).mean()); bad = 1
+for t in (1, 2, 3):  # every channel, bit for bit
+    _, other = read(f"crowd_t{t}")
+    if not np.array_equal(other.view(np.uint32), crowd.view(np.uint32)):
+        print("FAIL threads/tiles change the image", t); bad = 1
+# Colour = AO x the colour without AO (float rounding only).
+err = np.abs(crowd[..., :3][on] - a[on][:, None] * plain[..., :3][on]).max()
+if err > 1e-6:
+    print("FAIL colour is not AO x shaded colour", err); bad = 1
+sys.exit(bad)
+PY
+
+# Bad ao blocks: one line naming the file, non-zero exit, no output.
+bad() {  # name spheres ao-block extra expected-text
+  local f; f=$(scene "$1" "$2" "$3" "${4:-}")
+  rm -f "$tmp/bad.png"
+  if "$zsweep" render "$f" -o "$tmp/bad.png" >/dev/null 2>"$tmp/err"; then echo "FAIL $1 accepted"; fail=1; return; fi
+  [[ $(wc -l <"$tmp/err") -eq 1 ]] && grep -q "$f" "$tmp/err" && grep -q "$5" "$tmp/err" \
+    || { echo "FAIL $1 message: $(cat "$tmp/err")"; fail=1; }
+  [[ -e "$tmp/bad.png" ]] && { echo "FAIL $1 left an output"; fail=1; }
+}
+bad dirs "$tmp/one.sph" '{"directions": 64}' '' "ao.directions must be 6, 18, 66"
+bad size "$tmp/one.sph" '{"map_size": 4}' '' "ao.map_size"
+bad biasneg "$tmp/one.sph" '{"bias": -1}' '' "ao.bias"
+bad depth "$tmp/one.sph" '{"depth": "exact"}' '' "ao.depth"
+bad alpha "$tmp/one.sph" '{"occluders": "alpha"}' '' "not implemented yet"
+bad key "$tmp/one.sph" '{"radius": 3}' '' "unknown key 'ao.radius'"
+bad mode "$tmp/one.sph" '{"directions": 6}' ', "render": {"mode": "sorted"}' 'ao needs render.mode'
+printf '{"mesh": "%s", "ao": {"directions": 6}}\n' "$src/tests/data/ok/no_final_newline.off" >"$tmp/vol.json"
+"$zsweep" render "$tmp/vol.json" -o "$tmp/bad.png" >/dev/null 2>"$tmp/err" && { echo "FAIL ao in a volume scene accepted"; fail=1; }
+grep -q "'ao' is for sphere scenes" "$tmp/err" || { echo "FAIL volume ao message: $(cat "$tmp/err")"; fail=1; }
+"$zsweep" reference "$tmp/one.json" -o "$tmp/ref.exr" >/dev/null 2>"$tmp/err" && { echo "FAIL reference with ao accepted"; fail=1; }
+grep -q "does not compute ambient occlusion yet" "$tmp/err" || { echo "FAIL reference message: $(cat "$tmp/err")"; fail=1; }
+[[ $fail -eq 0 ]] && echo "sphere_ao: all checks passed"
+exit $fail
