@@ -18,6 +18,7 @@
 #include "mesh/topology.h"
 #include "reference/reference_renderer.h"
 #include "reference/sphere_reference.h"
+#include "shadows/ao_directions.h"
 #include "spheres/sphere_colors.h"
 #include "image/tile_writer.h"
 #include "util/atomic_file.h"
@@ -28,18 +29,22 @@ namespace {
 
 // Writes RGBA and, for EXR/TIFF, the Z channel, through the tile writer
 // (as `render` writes them).
-void write_rgba_z(const std::string& path, const Image& img, const std::vector<float>& z) {
-  const TileGrid grid{img.width, img.height, 64, 5};
-  ImageTileWriter w(path, grid);
+// With `ao`, a sixth channel AO (as `render` writes it).
+void write_rgba_z(const std::string& path, const Image& img, const std::vector<float>& z,
+                  const std::vector<float>* ao = nullptr) {
+  const uint32_t C = ao ? 6 : 5;
+  const TileGrid grid{img.width, img.height, 64, C};
+  ImageTileWriter w(path, grid, "", ao ? std::vector<std::string>{"R", "G", "B", "A", "Z", "AO"} : std::vector<std::string>{});
   std::vector<float> buf;
   for (uint32_t t = 0; t < grid.count(); ++t) {
     const TileRect r = grid.rect(t);
-    buf.resize(size_t(r.width()) * r.height() * 5);
+    buf.resize(size_t(r.width()) * r.height() * C);
     for (uint32_t y = r.y0; y < r.y1; ++y)
       for (uint32_t x = r.x0; x < r.x1; ++x) {
-        float* o = &buf[(size_t(y - r.y0) * r.width() + (x - r.x0)) * 5];
+        float* o = &buf[(size_t(y - r.y0) * r.width() + (x - r.x0)) * C];
         std::copy(img.at(x, y), img.at(x, y) + 4, o);
         o[4] = z[size_t(y) * img.width + x];
+        if (ao) o[5] = (*ao)[size_t(y) * img.width + x];
       }
     w.tile(r, buf.data());
   }
@@ -48,7 +53,8 @@ void write_rgba_z(const std::string& path, const Image& img, const std::vector<f
 
 // The sphere scene as `render` sees it (camera, colours, shading,
 // background), traced by Embree with exact hits.
-void reference_spheres(SceneInput& in, const std::string& out, const std::string& stats, int threads) {
+void reference_spheres(SceneInput& in, const std::string& out, const std::string& stats, int threads,
+                       uint32_t ao_samples) {
   AtomicFile(out).check_writable();
   if (!stats.empty()) AtomicFile(stats).check_writable();
   const RenderSettings& rs = in.scene.settings;
@@ -63,12 +69,18 @@ void reference_spheres(SceneInput& in, const std::string& out, const std::string
   const View view(rs.camera, rs.width, rs.height);
   // Translucent modes: every crossing composited in order, exactly (no
   // tolerance, no layer cap): what each mode approximates.
+  // Ambient occlusion: exact rays over the scene's directions, or Monte
+  // Carlo with --ao-samples rays per pixel.
+  std::vector<float> ao;
   const SphereReferenceImage img =
-      sp.mode == SphereMode::Opaque
+      sp.ao.directions
+          ? render_sphere_reference_ao(in.spheres, colors, sp.shading, view, rs.background, threads,
+                                       ao_directions(sp.ao.directions), ao_samples, &ao)
+      : sp.mode == SphereMode::Opaque
           ? render_sphere_reference(in.spheres, colors, sp.shading, view, rs.background, threads)
           : render_sphere_reference_translucent(in.spheres, colors, sp.shading, view, rs.background, threads,
                                                 sp.front_surfaces_only);
-  write_rgba_z(out, img.rgba, img.z);
+  write_rgba_z(out, img.rgba, img.z, sp.ao.directions ? &ao : nullptr);
   if (!stats.empty()) {
     nlohmann::json j = {{"time_ms", {{"build", img.ms_build}, {"trace", img.ms_trace}, {"total", img.ms_build + img.ms_trace}}},
                         {"spheres", in.spheres.size()},
@@ -93,12 +105,17 @@ void add_reference_command(CLI::App& app) {
   a->add_options(*cmd, false);
   cmd->add_option("-o,--output", *out, "Output image (.exr or .tif keep the float values)")->required();
   cmd->add_option("--stats", *stats, "Write ray-casting statistics as JSON");
-  cmd->callback([a, out, stats] {
+  auto ao_samples = std::make_shared<uint32_t>(0);
+  cmd->add_option("--ao-samples", *ao_samples,
+                  "Sphere scenes with ao: 0 (default) traces the scene's directions exactly; N > 0 a cosine-weighted "
+                  "Monte Carlo AO with N rays per pixel")
+      ->check(CLI::Range(0u, 1u << 20));
+  cmd->callback([a, out, stats, ao_samples] {
     SceneInput in = a->load();
+    if (*ao_samples && !(in.scene.kind == SceneKind::Spheres && in.scene.spheres.ao.directions))
+      throw std::runtime_error(a->input + ": --ao-samples needs a sphere scene with an 'ao' block");
     if (in.scene.kind == SceneKind::Spheres) {
-      if (in.scene.spheres.ao.directions)
-        throw std::runtime_error(a->input + ": the reference does not compute ambient occlusion yet (remove 'ao')");
-      reference_spheres(in, *out, *stats, in.scene.settings.threads);
+      reference_spheres(in, *out, *stats, in.scene.settings.threads, *ao_samples);
       return;
     }
     if (in.scene.kind == SceneKind::Surfaces) {

@@ -281,13 +281,22 @@ bool SphereReference::nearest(double X, double Y, double* depth, uint32_t* id, g
 }
 
 void SphereReference::crossings(double X, double Y, std::vector<SphereCrossing>* out) const {
+  glm::dvec3 o, u;
+  impl_->view.ray(X, Y, &o, &u);
+  ray_crossings(o, u, out);
+  const double k = impl_->view.perspective() ? glm::dot(u, impl_->view.forward()) : 1.0;
+  for (SphereCrossing& c : *out) c.depth *= k;
+}
+
+void SphereReference::ray_crossings(const glm::dvec3& o, const glm::dvec3& u, std::vector<SphereCrossing>* out) const {
   out->clear();
   const Impl& m = *impl_;
   if (!m.scene) return;
   Ctx ctx;
   rtcInitIntersectContext(&ctx.rc);
   ctx.spheres = &m.spheres;
-  m.view.ray(X, Y, &ctx.o, &ctx.u);
+  ctx.o = o;
+  ctx.u = u;
   alignas(16) RTCRayHit rh;
   double shift;
   if (!m.setup(ctx.o, ctx.u, &rh, &shift)) return;
@@ -296,8 +305,6 @@ void SphereReference::crossings(double X, double Y, std::vector<SphereCrossing>*
   ctx.best_prim = RTC_INVALID_GEOMETRY_ID;
   ctx.out = out;
   rtcIntersect1(m.scene, &ctx.rc, &rh);
-  const double k = m.view.perspective() ? glm::dot(ctx.u, m.view.forward()) : 1.0;
-  for (SphereCrossing& c : *out) c.depth *= k;
   auto key = [](const SphereCrossing& a) { return std::tuple(a.depth, a.id, !a.entering); };
   std::sort(out->begin(), out->end(), [&](const SphereCrossing& a, const SphereCrossing& b) { return key(a) < key(b); });
   out->erase(std::unique(out->begin(), out->end(),
@@ -412,6 +419,77 @@ SphereReferenceImage render_sphere_reference_translucent(const SphereSet& sphere
                        const double m = 1.0 - acc[3];
                        for (int q = 0; q < 4; ++q) px[q] = float(acc[q] + background[q] * m);
                        return *depth < std::numeric_limits<double>::infinity();
+                     });
+}
+
+}  // namespace zs
+
+namespace zs {
+
+SphereReferenceImage render_sphere_reference_ao(const SphereSet& spheres, const std::vector<glm::vec4>& colors,
+                                                const Shading& shading, const View& view, const double background[4],
+                                                int threads, const std::vector<glm::dvec3>& dirs, uint32_t samples,
+                                                std::vector<float>* ao_out) {
+  const uint32_t W = view.width();
+  ao_out->assign(size_t(W) * view.height(), std::numeric_limits<float>::infinity());
+  auto to_eye = [&](const glm::dvec3& u) {
+    return glm::dvec3(-glm::dot(u, view.right()), -glm::dot(u, view.up()), glm::dot(u, view.forward()));
+  };
+  return trace_image(spheres, colors, view, threads,
+                     [&](const SphereReference& ref, uint32_t i, uint32_t j, float* px, double* depth) {
+                       thread_local std::vector<SphereCrossing> xs;
+                       uint32_t id;
+                       glm::dvec3 n;
+                       if (!ref.nearest(i, j, depth, &id, &n)) {
+                         for (int k = 0; k < 4; ++k) px[k] = float(background[k]);
+                         return false;
+                       }
+                       glm::dvec3 o, u;
+                       view.ray(i, j, &o, &u);
+                       const double k = view.perspective() ? glm::dot(u, view.forward()) : 1.0;
+                       const glm::dvec3 P = o + (*depth / k) * u;
+                       const glm::dvec3 N =
+                           glm::normalize(n.x * view.right() + n.y * view.up() - n.z * view.forward());
+                       // V(P, w): no other sphere crosses the ray from P towards w (P's own
+                       // sphere is left behind: it is convex and N·w > 0).
+                       auto open = [&](const glm::dvec3& w) {
+                         ref.ray_crossings(P, w, &xs);
+                         for (const SphereCrossing& x : xs)
+                           if (x.id != id && x.depth > 0) return false;
+                         return true;
+                       };
+                       double ao = 1;
+                       if (samples == 0) {  // the renderer's directions, traced exactly
+                         double num = 0, den = 0;
+                         for (const glm::dvec3& w : dirs) {
+                           const double c = glm::dot(N, w);
+                           if (!(c > 0)) continue;
+                           den += c;
+                           num += open(w) ? c : 0.0;
+                         }
+                         ao = den > 0 ? num / den : 1.0;
+                       } else {  // cosine-weighted Monte Carlo (Malley), a fixed stream per pixel
+                         uint64_t st = (uint64_t(j) * W + i) * 0x9E3779B97F4A7C15ull + 1;
+                         auto next = [&] {
+                           st ^= st << 13, st ^= st >> 7, st ^= st << 17;
+                           return double(st >> 11) * 0x1p-53;
+                         };
+                         const glm::dvec3 t = glm::normalize(glm::cross(N, std::abs(N.x) < 0.6 ? glm::dvec3(1, 0, 0)
+                                                                                             : glm::dvec3(0, 1, 0)));
+                         const glm::dvec3 b = glm::cross(N, t);
+                         uint32_t hits = 0;
+                         for (uint32_t q = 0; q < samples; ++q) {
+                           const double r = std::sqrt(next()), phi = 2 * M_PI * next();
+                           const double x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0, 1 - r * r));
+                           hits += open(glm::normalize(x * t + y * b + z * N));
+                         }
+                         ao = double(hits) / samples;
+                       }
+                       const glm::vec4& c = colors[id];
+                       const glm::dvec3 rgb = ao * shade(shading, glm::dvec3(c.r, c.g, c.b), n, to_eye(u));
+                       px[0] = float(rgb.r), px[1] = float(rgb.g), px[2] = float(rgb.b), px[3] = 1.f;
+                       (*ao_out)[size_t(j) * W + i] = float(ao);
+                       return true;
                      });
 }
 

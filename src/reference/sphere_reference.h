@@ -56,6 +56,8 @@ class SphereReference {
   // depth, then index, entering before leaving (a tangent ray gives both at
   // one depth). `out` is cleared first. Thread-safe.
   void crossings(double X, double Y, std::vector<SphereCrossing>* out) const;
+  // The same along any ray o + t·u (u unit), with `depth` the ray parameter t.
+  void ray_crossings(const glm::dvec3& o, const glm::dvec3& u, std::vector<SphereCrossing>* out) const;
 
   // Spheres left out: non-finite centre, radius not positive or not finite.
   size_t invalid() const { return invalid_; }
@@ -98,5 +100,16 @@ SphereReferenceImage render_sphere_reference_translucent(const SphereSet& sphere
                                                          const std::vector<glm::vec4>& colors, const Shading& shading,
                                                          const View& view, const double background[4], int threads,
                                                          bool front_only);
+
+// Opaque scenes with ambient occlusion: the nearest surface as above, its
+// AO from exact rays (no map): with samples = 0 over `dirs` (the renderer's
+// directions and weights, isolating the maps' error), else a cosine-weighted
+// Monte Carlo estimate with that many rays per pixel (a fixed random stream
+// per pixel; isolating the direction count's error). Colour = AO × shaded;
+// `ao` per pixel, +inf where nothing is hit.
+SphereReferenceImage render_sphere_reference_ao(const SphereSet& spheres, const std::vector<glm::vec4>& colors,
+                                                const Shading& shading, const View& view, const double background[4],
+                                                int threads, const std::vector<glm::dvec3>& dirs, uint32_t samples,
+                                                std::vector<float>* ao);
 
 }  // namespace zs

@@ -2,7 +2,9 @@
 # Ambient occlusion in sphere scenes (`ao` block, docs/spheres.md): the EXR has
 # an AO channel in [0, 1] on spheres and +inf elsewhere; colour = AO × the
 # colour without AO; an isolated sphere has AO >= 0.99 over every pixel, and a
-# sphere with close neighbours is darker where they are; threads and tiles
+# sphere with close neighbours is darker where they are; the maps' AO is
+# within 0.01 (mean) of the same directions traced exactly, which is close to a
+# Monte Carlo AO; `reference --ao-samples` needs an ao scene; threads and tiles
 # change no bit; bad `ao` blocks fail in one line, naming the file, with no
 # output. Skipped (77) without a python3 that has numpy and OpenImageIO.
 set -u
@@ -30,6 +32,11 @@ run "$(scene one "$tmp/one.sph" '{"directions": 66, "map_size": 256}')" -o "$tmp
 run "$(scene crowd "$tmp/crowd.sph" '{"directions": 66, "map_size": 512}')" -o "$tmp/crowd.exr" --threads 2
 run "$(scene crowd_imp "$tmp/crowd.sph" '{"directions": 18, "map_size": 512, "depth": "impostor"}')" -o "$tmp/crowd_imp.exr"
 run "$(scene crowd_plain "$tmp/crowd.sph" '')" -o "$tmp/crowd_plain.exr"
+# The references: the same 66 directions traced exactly (isolates the maps'
+# error), and a cosine-weighted Monte Carlo AO (isolates the direction count's).
+"$zsweep" reference "$tmp/crowd.json" -o "$tmp/crowd_ref.exr" >/dev/null 2>"$tmp/err" || { echo "FAIL reference: $(cat "$tmp/err")"; fail=1; }
+"$zsweep" reference "$tmp/crowd.json" -o "$tmp/crowd_mc.exr" --ao-samples 1024 >/dev/null 2>"$tmp/err" \
+  || { echo "FAIL reference --ao-samples: $(cat "$tmp/err")"; fail=1; }
 for t in "1 64" "2 16" "3 33"; do
   set -- $t
   run "$tmp/crowd.json" -o "$tmp/crowd_t$1.exr" --threads "$1" --tile-size "$2"
@@ -66,6 +73,17 @@ for t in (1, 2, 3):  # every channel, bit for bit
     _, other = read(f"crowd_t{t}")
     if not np.array_equal(other.view(np.uint32), crowd.view(np.uint32)):
         print("FAIL threads/tiles change the image", t); bad = 1
+names, ref = read("crowd_ref")
+_, mc = read("crowd_mc")
+if names[-1] != "AO" or not np.array_equal(ref[..., 3] > 0, on):
+    print("FAIL reference coverage or channels", names); bad = 1
+else:
+    d = np.abs(a[on] - ref[..., 5][on])
+    if not (d.mean() < 0.01 and d.max() < 0.25):
+        print("FAIL maps vs exact directions", d.mean(), d.max()); bad = 1
+    m = np.abs(ref[..., 5][on] - mc[..., 5][on])
+    if not (m.mean() < 0.06 and ref[..., 5][on].min() < 0.6):
+        print("FAIL 66 directions vs Monte Carlo", m.mean()); bad = 1
 # Colour = AO x the colour without AO (float rounding only).
 err = np.abs(crowd[..., :3][on] - a[on][:, None] * plain[..., :3][on]).max()
 if err > 1e-6:
@@ -92,7 +110,9 @@ bad mode "$tmp/one.sph" '{"directions": 6}' ', "render": {"mode": "sorted"}' 'ao
 printf '{"mesh": "%s", "ao": {"directions": 6}}\n' "$src/tests/data/ok/no_final_newline.off" >"$tmp/vol.json"
 "$zsweep" render "$tmp/vol.json" -o "$tmp/bad.png" >/dev/null 2>"$tmp/err" && { echo "FAIL ao in a volume scene accepted"; fail=1; }
 grep -q "'ao' is for sphere scenes" "$tmp/err" || { echo "FAIL volume ao message: $(cat "$tmp/err")"; fail=1; }
-"$zsweep" reference "$tmp/one.json" -o "$tmp/ref.exr" >/dev/null 2>"$tmp/err" && { echo "FAIL reference with ao accepted"; fail=1; }
-grep -q "does not compute ambient occlusion yet" "$tmp/err" || { echo "FAIL reference message: $(cat "$tmp/err")"; fail=1; }
+"$zsweep" reference "$tmp/one.json" -o "$tmp/ref.exr" --ao-samples 4 >/dev/null 2>&1 || { echo "FAIL reference --ao-samples"; fail=1; }
+"$zsweep" reference "$tmp/crowd_plain.json" -o "$tmp/ref.exr" --ao-samples 4 >/dev/null 2>"$tmp/err" \
+  && { echo "FAIL --ao-samples without ao accepted"; fail=1; }
+grep -q "needs a sphere scene with an 'ao' block" "$tmp/err" || { echo "FAIL --ao-samples message: $(cat "$tmp/err")"; fail=1; }
 [[ $fail -eq 0 ]] && echo "sphere_ao: all checks passed"
 exit $fail
