@@ -25,6 +25,7 @@
 #include "spheres/sphere_colors.h"
 #include "sprites/sphere_renderer.h"
 #include "util/atomic_file.h"
+#include "util/bytes_str.h"
 #include "util/memory.h"
 #include "volume/segment_batch.h"
 #include "volume/zsweep_renderer.h"
@@ -238,18 +239,31 @@ void run_spheres(SceneInput& in, const std::string& out_path, const std::string&
   const std::vector<std::string> names =
       srs.ao.directions ? std::vector<std::string>{"R", "G", "B", "A", "Z", "AO"} : std::vector<std::string>{};
   const uint64_t held = sphere_set_bytes(in.spheres) + colors.size() * sizeof(glm::vec4);
+  // AO maps: built once for the set and shared by every frame (they do not
+  // depend on the view).
+  std::shared_ptr<const SphereAoMaps> ao;
+  if (srs.ao.directions && srs.mode == SphereMode::Opaque) {
+    const uint64_t budget = srs.memory_budget_bytes ? srs.memory_budget_bytes : default_memory_budget();
+    if (held + sphere_ao_bytes_bound(srs) > budget)
+      throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold " +
+                               std::to_string(srs.ao.directions) + " AO maps of " + std::to_string(srs.ao.map_size) +
+                               "² (up to " + bytes_str(sphere_ao_bytes_bound(srs)) +
+                               "); raise --memory-budget or lower ao.map_size or ao.directions");
+    ao = sphere_ao_maps(in.spheres, srs);
+  }
   if (render_mpi_enabled()) {
     std::unique_ptr<ImageTileWriter> w;
     if (render_mpi_rank() == 0) w = std::make_unique<ImageTileWriter>(out_path, grid, compression, names);
     srs.progress = false;
     SphereRenderer r(in.spheres, colors, g, srs,
-                     held + (w ? w->buffer_bytes_estimate() : 0) + render_mpi_message_bytes(grid, srs.threads));
+                     held + (w ? w->buffer_bytes_estimate() : 0) + render_mpi_message_bytes(grid, srs.threads), ao);
     MpiReport report;
     render_mpi(r, w.get(), &report);
     if (!w) return;
     w->commit();
     SphereStats st = r.stats();
     st.ms_grid = ms_grid;
+    if (ao) st.ms_ao_maps = ao->ms_build;
     st.ms_total = st.ms_setup + report.wall_ms;
     for (uint64_t p : report.peak_rss) st.peak_rss_bytes = std::max(st.peak_rss_bytes, p);
     if (!stats_path.empty()) write_sphere_stats(stats_path, st, in, color, {});
@@ -262,10 +276,13 @@ void run_spheres(SceneInput& in, const std::string& out_path, const std::string&
   std::vector<double> frame_ms;
   auto renderer = render_frames<SphereRenderer>(
       frames, writer,
-      [&] { return std::make_unique<SphereRenderer>(in.spheres, colors, g, srs, held + writer.buffer_bytes_estimate()); },
+      [&] {
+        return std::make_unique<SphereRenderer>(in.spheres, colors, g, srs, held + writer.buffer_bytes_estimate(), ao);
+      },
       [](const SphereRenderer& r) { return r.stats().ms_total; }, &frame_ms);
   SphereStats st = renderer->stats();
   st.ms_grid = ms_grid;
+  if (ao) st.ms_ao_maps = ao->ms_build;
   if (frames > 1) st.ms_total = *std::min_element(frame_ms.begin(), frame_ms.end());
   if (st.rendered_pixels == 0)
     std::fprintf(stderr, "zsweep: warning: %s: the image is empty: no sphere is in front of the camera and in view\n",

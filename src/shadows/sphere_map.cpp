@@ -8,6 +8,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "raster/tile_loop.h"
 #include "shadows/depth_blocks.h"
@@ -126,6 +128,29 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
     stats->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   return ShadowMap::from_tiles(light, frame, std::move(centre), s, std::move(blocks));
+}
+
+SphereAoMaps build_sphere_ao_maps(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii,
+                                  const std::vector<glm::dvec3>& dirs, uint32_t size, SphereDepth mode,
+                                  const ShadowSettings& s, int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SphereAoMaps out;
+  out.dirs = dirs;
+  out.maps.resize(dirs.size());
+  threads = std::max(1, threads);
+  if (int(dirs.size()) >= threads && threads > 1) {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      tbb::parallel_for(size_t(0), dirs.size(), [&](size_t k) {
+        out.maps[k] = build_sphere_map(centres, radii, dirs[k], size, mode, s, 1);
+      });
+    });
+  } else {
+    for (size_t k = 0; k < dirs.size(); ++k) out.maps[k] = build_sphere_map(centres, radii, dirs[k], size, mode, s, threads);
+  }
+  for (const ShadowMap& m : out.maps) out.bytes += m.bytes();
+  out.ms_build = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
 }
 
 double ambient_occlusion(const std::vector<ShadowMap>& maps, const std::vector<glm::dvec3>& dirs, const glm::dvec3& p,

@@ -38,6 +38,21 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
                            const glm::dvec3& omega, uint32_t size, SphereDepth mode, const ShadowSettings& s,
                            int threads, SphereMapStats* stats = nullptr);
 
+// Every direction's map for a sphere set: the AO preprocessing (§2.4.5),
+// built once and reused by every frame of a static set. Maps are built in
+// parallel over directions (each one by one thread) when there are at least
+// as many directions as threads, else one after another over tiles; the maps
+// are the same either way.
+struct SphereAoMaps {
+  std::vector<glm::dvec3> dirs;
+  std::vector<ShadowMap> maps;
+  double ms_build = 0;
+  uint64_t bytes = 0;
+};
+SphereAoMaps build_sphere_ao_maps(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii,
+                                  const std::vector<glm::dvec3>& dirs, uint32_t size, SphereDepth mode,
+                                  const ShadowSettings& s, int threads);
+
 // AO(P) = Σ_k V_k(P)·max(0, N·ω_k) / Σ_k max(0, N·ω_k), V_k the lit fraction
 // of map k (built for dirs[k]); N unit. 1 when no direction faces N.
 double ambient_occlusion(const std::vector<ShadowMap>& maps, const std::vector<glm::dvec3>& dirs, const glm::dvec3& p,

@@ -61,6 +61,25 @@ constexpr uint64_t kTilePixelBytes = 12;  // depth and id; plus 4 per output cha
 
 uint32_t sphere_channels(const SphereRenderSettings& rs) { return rs.ao.directions ? 6 : 5; }
 
+uint64_t sphere_ao_bytes_bound(const SphereRenderSettings& rs) {
+  return uint64_t(rs.ao.directions) * rs.ao.map_size * rs.ao.map_size * 4;  // every tile of every map stored
+}
+
+std::shared_ptr<const SphereAoMaps> sphere_ao_maps(const SphereSet& s, const SphereRenderSettings& rs) {
+  // Default bias: 1 % of the smallest radius (discs cannot shadow their own
+  // sphere; the bias only absorbs rounding). Impostor depth needs the slope bias.
+  double rmin = INFINITY;
+  for (double r : s.radii)
+    if (r > 0 && std::isfinite(r)) rmin = std::min(rmin, r);
+  ShadowSettings ss;
+  ss.map_size = rs.ao.map_size;
+  ss.bias = rs.ao.bias >= 0 ? rs.ao.bias : (std::isfinite(rmin) ? 0.01 * rmin : 0.0);
+  ss.slope_bias = rs.ao.impostor_depth ? 1.5 : 0.0;
+  return std::make_shared<const SphereAoMaps>(build_sphere_ao_maps(
+      s.centres, s.radii, ao_directions(rs.ao.directions), rs.ao.map_size,
+      rs.ao.impostor_depth ? SphereDepth::Impostor : SphereDepth::CentreDisc, ss, std::max(1, rs.threads)));
+}
+
 uint64_t sphere_set_bytes(const SphereSet& s) {
   return s.centres.size() * sizeof(glm::dvec3) + s.radii.size() * 8 + s.scalars.size() * 8 +
          s.rgba.size() * sizeof(glm::vec4) + s.element.size();
@@ -80,14 +99,13 @@ struct SphereRenderer::Impl {
   tbb::enumerable_thread_specific<TileState> states;
   uint64_t kbuf_bytes = 0;
   static constexpr uint64_t kMaxKbufBytes = uint64_t(512) << 20;
-  // Ambient occlusion: the directions and one map each (empty: off).
-  std::vector<glm::dvec3> ao_dirs;
-  std::vector<ShadowMap> ao_maps;
+  // Ambient occlusion: the directions and one map each (null: off).
+  std::shared_ptr<const SphereAoMaps> ao;
 
   Impl(const SphereSet& spheres, const std::vector<glm::vec4>& c, const SphereGrid& grid_, const SphereRenderSettings& settings,
-       uint64_t extra_bytes)
+       uint64_t extra_bytes, std::shared_ptr<const SphereAoMaps> ao_maps)
       : s(spheres), colors(c), g(grid_), rs(settings), view(settings.camera, settings.width, settings.height),
-        cam(camera_plane(view)) {
+        cam(camera_plane(view)), ao(std::move(ao_maps)) {
     const auto t_start = Clock::now();
     if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
     if (rs.tile_size < 1) throw std::runtime_error("tile size must be at least 1 pixel");
@@ -113,7 +131,17 @@ struct SphereRenderer::Impl {
                                  std::to_string(s.size()) + " spheres (needs more than " + bytes_str(need) + ")");
     };
     check(shared + s.size() * 4);
-    if (rs.ao.directions) build_ao(threads, shared, check);
+    if (rs.ao.directions) {
+      if (rs.mode != SphereMode::Opaque) throw std::runtime_error("ao needs render.mode \"opaque\"");
+      if (!ao) {
+        check(shared + sphere_ao_bytes_bound(rs));
+        ao = sphere_ao_maps(s, rs);
+        S.ms_ao_maps = ao->ms_build;
+      }
+      S.ao_map_bytes = ao->bytes;
+      shared += ao->bytes;
+      check(shared);
+    }
 
     // Translucent modes: only opaque spheres hide others (culling stays
     // lossless), and each thread holds a tile's translucent state.
@@ -369,32 +397,6 @@ struct SphereRenderer::Impl {
     return ts.out.data();
   }
 
-  // One map per AO direction, over every drawable sphere (the maps do not
-  // depend on the viewer, so none of the view's culling applies).
-  template <class Check>
-  void build_ao(int threads, uint64_t shared, const Check& check) {
-    if (rs.mode != SphereMode::Opaque) throw std::runtime_error("ao needs render.mode \"opaque\"");
-    ao_dirs = ao_directions(rs.ao.directions);
-    // Worst case: every tile of every map stored.
-    check(shared + uint64_t(rs.ao.directions) * rs.ao.map_size * rs.ao.map_size * 4);
-    double rmin = INFINITY;
-    for (double r : s.radii)
-      if (r > 0 && std::isfinite(r)) rmin = std::min(rmin, r);
-    ShadowSettings ss;
-    ss.map_size = rs.ao.map_size;
-    ss.bias = rs.ao.bias >= 0 ? rs.ao.bias : (std::isfinite(rmin) ? 0.01 * rmin : 0.0);
-    ss.slope_bias = rs.ao.impostor_depth ? 1.5 : 0.0;  // discs cannot shadow their own sphere
-    const auto t = Clock::now();
-    for (const glm::dvec3& d : ao_dirs) {
-      SphereMapStats ms;
-      ao_maps.push_back(build_sphere_map(s.centres, s.radii, d, rs.ao.map_size,
-                                         rs.ao.impostor_depth ? SphereDepth::Impostor : SphereDepth::CentreDisc, ss,
-                                         threads, &ms));
-      setup.ao_map_bytes += ao_maps.back().bytes();
-    }
-    setup.ms_ao_maps = ms_since(t);
-  }
-
   void resolve(TileState& ts, const TileRect& r) {
     const uint32_t w = r.width(), h = r.height();
     const uint32_t C = grid.channels;
@@ -435,13 +437,13 @@ struct SphereRenderer::Impl {
         const glm::dvec3 v = view.perspective() ? glm::normalize(glm::dvec3(-P.x, -P.y, P.z)) : glm::dvec3(0, 0, 1);
         const glm::vec4& col = colors[id];
         glm::dvec3 rgb = shade(rs.shading, glm::dvec3(col.r, col.g, col.b), n, v);
-        if (!ao_maps.empty()) {
+        if (ao) {
           // World point and normal (camera space x right, y up, z forward).
           const glm::dvec3 Pw = view.eye() + P.x * view.right() + P.y * view.up() + P.z * view.forward();
           const glm::dvec3 Nw = glm::normalize(n.x * view.right() + n.y * view.up() - n.z * view.forward());
-          const double ao = ambient_occlusion(ao_maps, ao_dirs, Pw, Nw);
-          rgb *= ao;  // final colour = AO × shaded colour (digest §2.4.6)
-          o[5] = float(ao);
+          const double a = ambient_occlusion(ao->maps, ao->dirs, Pw, Nw);
+          rgb *= a;  // final colour = AO × shaded colour (digest §2.4.6)
+          o[5] = float(a);
         }
         o[0] = float(rgb.r), o[1] = float(rgb.g), o[2] = float(rgb.b), o[3] = 1.f;  // opaque: alpha ignored
         o[4] = float(hit.t);
@@ -451,8 +453,9 @@ struct SphereRenderer::Impl {
 };
 
 SphereRenderer::SphereRenderer(const SphereSet& spheres, const std::vector<glm::vec4>& colors, const SphereGrid& grid,
-                               const SphereRenderSettings& settings, uint64_t extra_bytes)
-    : impl_(std::make_unique<Impl>(spheres, colors, grid, settings, extra_bytes)) {}
+                               const SphereRenderSettings& settings, uint64_t extra_bytes,
+                               std::shared_ptr<const SphereAoMaps> ao_maps)
+    : impl_(std::make_unique<Impl>(spheres, colors, grid, settings, extra_bytes, std::move(ao_maps))) {}
 SphereRenderer::~SphereRenderer() = default;
 const TileGrid& SphereRenderer::grid() const { return impl_->grid; }
 int SphereRenderer::threads() const { return std::max(1, impl_->rs.threads); }

@@ -22,6 +22,7 @@
 #include <glm/vec4.hpp>
 
 #include "raster/tiled_renderer.h"
+#include "shadows/sphere_map.h"
 #include "spheres/sphere_set.h"
 #include "sprites/sphere_grid.h"
 #include "sprites/sphere_settings.h"
@@ -36,8 +37,11 @@ class SphereRenderer : public TiledRenderer {
   // across frames: the data are static). `extra_bytes`: what the caller holds
   // besides (the set, its sink), counted against the memory budget. Throws
   // std::runtime_error when the budget cannot hold the render.
+  // `ao_maps`: the set's AO maps when settings.ao is on and the caller keeps
+  // them across frames (sphere_ao_maps()); null: built here.
   SphereRenderer(const SphereSet& spheres, const std::vector<glm::vec4>& colors, const SphereGrid& grid,
-                 const SphereRenderSettings& settings, uint64_t extra_bytes = 0);
+                 const SphereRenderSettings& settings, uint64_t extra_bytes = 0,
+                 std::shared_ptr<const SphereAoMaps> ao_maps = nullptr);
   ~SphereRenderer() override;
 
   const TileGrid& grid() const override;  // RGBA + Z
@@ -59,5 +63,9 @@ class SphereRenderer : public TiledRenderer {
 uint64_t sphere_set_bytes(const SphereSet& s);
 // Channels of a tile: R, G, B, A, Z, then AO when ambient occlusion is on.
 uint32_t sphere_channels(const SphereRenderSettings& rs);
+// The AO maps of settings.ao for a set (bias defaults resolved), and the
+// most memory they can take.
+std::shared_ptr<const SphereAoMaps> sphere_ao_maps(const SphereSet& s, const SphereRenderSettings& rs);
+uint64_t sphere_ao_bytes_bound(const SphereRenderSettings& rs);
 
 }  // namespace zs
