@@ -6,11 +6,15 @@
 
 namespace zs {
 
-void zbuffer_triangles(const std::vector<ScreenVertex>& verts, const std::vector<std::array<uint32_t, 3>>& corners,
-                       const uint32_t* ids, size_t n, bool perspective, const Viewport& vp, DepthBuffer& db,
-                       ZBufferScratch& scratch, ZBufferCounts* counts) {
-  ZBufferCounts c;
-  const size_t w = size_t(vp.x1 - vp.x0);
+namespace {
+
+// Sets up and scans each triangle ids[0..n), calling row(t, st, span) for
+// every span of pixel centres it covers in `vp`; counts triangles,
+// degenerate ones and fragments. Shared by both kernels below.
+template <class Row>
+void scan_triangles(const std::vector<ScreenVertex>& verts, const std::vector<std::array<uint32_t, 3>>& corners,
+                    const uint32_t* ids, size_t n, bool perspective, const Viewport& vp, ZBufferScratch& scratch,
+                    ZBufferCounts& c, Row&& row) {
   for (size_t k = 0; k < n; ++k) {
     const uint32_t t = ids[k];
     const ScreenVertex v[3] = {verts[corners[t][0]], verts[corners[t][1]], verts[corners[t][2]]};
@@ -23,19 +27,11 @@ void zbuffer_triangles(const std::vector<ScreenVertex>& verts, const std::vector
     scratch.spans.clear();
     scan_span(st, vp, scratch.spans, scratch.scan);
     for (const RowSpan& r : scratch.spans.rows) {
-      const size_t row = size_t(r.y - vp.y0) * w - size_t(vp.x0);
       c.fragments += uint64_t(r.x1 - r.x0 + 1);
-      for (int32_t x = r.x0; x <= r.x1; ++x) {
-        double z, s;
-        st.attributes(x, r.y, &z, &s);
-        c.depth_writes += db.test_write(row + size_t(x), z, t);
-      }
+      row(t, st, r);
     }
   }
-  *counts += c;
 }
-
-namespace {
 
 // One row of a span, min-merged into d[x0..x1]. The depth is the same
 // expression as ScreenTriangle::attributes with the row's term hoisted, in
@@ -54,31 +50,36 @@ void min_row(const ScreenTriangle& st, int32_t y, int32_t x0, int32_t x1, double
 
 }  // namespace
 
+void zbuffer_triangles(const std::vector<ScreenVertex>& verts, const std::vector<std::array<uint32_t, 3>>& corners,
+                       const uint32_t* ids, size_t n, bool perspective, const Viewport& vp, DepthBuffer& db,
+                       ZBufferScratch& scratch, ZBufferCounts* counts) {
+  ZBufferCounts c;
+  const size_t w = size_t(vp.x1 - vp.x0);
+  scan_triangles(verts, corners, ids, n, perspective, vp, scratch, c,
+                 [&](uint32_t t, const ScreenTriangle& st, const RowSpan& r) {
+                   const size_t row = size_t(r.y - vp.y0) * w - size_t(vp.x0);
+                   for (int32_t x = r.x0; x <= r.x1; ++x) {
+                     double z, s;
+                     st.attributes(x, r.y, &z, &s);
+                     c.depth_writes += db.test_write(row + size_t(x), z, t);
+                   }
+                 });
+  *counts += c;
+}
+
 void zbuffer_depths(const std::vector<ScreenVertex>& verts, const std::vector<std::array<uint32_t, 3>>& corners,
                     const uint32_t* ids, size_t n, bool perspective, const Viewport& vp, double* depth,
                     ZBufferScratch& scratch, ZBufferCounts* counts) {
   ZBufferCounts c;
   const size_t w = size_t(vp.x1 - vp.x0);
-  for (size_t k = 0; k < n; ++k) {
-    const uint32_t t = ids[k];
-    const ScreenVertex v[3] = {verts[corners[t][0]], verts[corners[t][1]], verts[corners[t][2]]};
-    ScreenTriangle st;
-    if (!setup_triangle(v, perspective, &st)) {
-      ++c.degenerate;
-      continue;
-    }
-    ++c.triangles;
-    scratch.spans.clear();
-    scan_span(st, vp, scratch.spans, scratch.scan);
-    for (const RowSpan& r : scratch.spans.rows) {
-      double* row = depth + size_t(r.y - vp.y0) * w + size_t(r.x0 - vp.x0);
-      c.fragments += uint64_t(r.x1 - r.x0 + 1);
-      if (perspective)
-        min_row<true>(st, r.y, r.x0, r.x1, row);
-      else
-        min_row<false>(st, r.y, r.x0, r.x1, row);
-    }
-  }
+  scan_triangles(verts, corners, ids, n, perspective, vp, scratch, c,
+                 [&](uint32_t, const ScreenTriangle& st, const RowSpan& r) {
+                   double* row = depth + size_t(r.y - vp.y0) * w + size_t(r.x0 - vp.x0);
+                   if (perspective)
+                     min_row<true>(st, r.y, r.x0, r.x1, row);
+                   else
+                     min_row<false>(st, r.y, r.x0, r.x1, row);
+                 });
   *counts += c;
 }
 

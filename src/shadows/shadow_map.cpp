@@ -149,6 +149,7 @@ void ShadowMap::finish(TiledDepths centre) {
   n_ = std::clamp<uint32_t>(s_.depths, 1, kMaxDepths);
   levels_ = n_ * std::max<uint32_t>(1, s_.pcf);
   reach_ = 1 + reach_texels(s_);
+  frame_ = make_frame();
   if (blocks_.min.empty()) {
     blocks_.reset(size_);
     for (uint32_t ty = 0; ty < centre.tiles(); ++ty)
@@ -254,15 +255,7 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
       busy.push_back(t);
       centre.add_tile(t % grid.cols(), t / grid.cols());
     }
-  struct Copy : TileSink {
-    TiledDepths* c;
-    void tile(const TileRect& r, const float* px) override {
-      float* t = c->tile(r.x0 >> kMapTileShift, r.y0 >> kMapTileShift);
-      for (uint32_t y = 0; y < r.height(); ++y)
-        std::memcpy(t + size_t(y) * kMapTile, px + size_t(y) * r.width(), r.width() * sizeof(float));
-    }
-  } sink;
-  sink.c = &centre;
+  TiledDepthsSink sink(centre);
   run_tiles(grid, busy, threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
     Tile& w = tiles.local();
     w.db.assign(size_t(r.width()) * r.height(), INFINITY);
@@ -270,15 +263,7 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
     zbuffer_depths(pt.verts, pt.corners, bins.begin(t), size_t(bins.end(t) - bins.begin(t)), pt.perspective, vp,
                    w.db.data(), w.scratch, &w.counts);
     w.out.resize(w.db.size());
-    uint64_t covered = 0;
-    for (size_t p = 0; p < w.out.size(); ++p) {
-      const double z = w.db[p];
-      float f = float(z);
-      if (double(f) < z) f = std::nextafter(f, INFINITY);  // never nearer than the caster
-      w.out[p] = f;
-      covered += z < INFINITY;
-    }
-    w.covered += covered;
+    w.covered += round_depths_up(w.db.data(), w.db.size(), w.out.data());
     // Tiles are 64 texels, whole blocks: no two tiles fold into one block.
     fold_block_ranges(w.out.data(), r.width(), r.x0, r.y0, r.x1, r.y1, m.blocks_);
     return w.out.data();
@@ -303,14 +288,6 @@ double ShadowMap::bias_at(const glm::dvec3& p, const glm::dvec3& n) const {
   return bias_for(view_->depth(p), std::abs(glm::dot(n, to_light(light_, p))));
 }
 
-// What a lookup needs of the map, copied into locals once per call so the
-// batch loop below keeps them in registers and vectorizes.
-struct LookupFrame {
-  double ex, ey, ez, fx, fy, fz, rx, ry, rz, ux, uy, uz;  // the light view (View::project)
-  double sx, sy, ox, oy;
-  double lx, ly, lz;  // directional: unit vector towards the light
-  double bias, slope, texel, reach, D;
-};
 
 namespace {
 
@@ -358,7 +335,7 @@ inline void prepare(const LookupFrame& F, const Light& light, double px, double 
 
 }  // namespace
 
-LookupFrame ShadowMap::frame() const {
+LookupFrame ShadowMap::make_frame() const {
   const View& v = *view_;
   LookupFrame F;
   F.ex = v.eye().x, F.ey = v.eye().y, F.ez = v.eye().z;
@@ -372,7 +349,7 @@ LookupFrame ShadowMap::frame() const {
 }
 
 double ShadowMap::bias_for(double d, double c) const {
-  return light_.type == LightType::Spot ? bias_of<true>(frame(), d, c) : bias_of<false>(frame(), d, c);
+  return light_.type == LightType::Spot ? bias_of<true>(frame_, d, c) : bias_of<false>(frame_, d, c);
 }
 
 // Reads every texel and depth of the kernel (the early outs left it open).
@@ -401,7 +378,7 @@ uint32_t ShadowMap::lit_count(const glm::dvec3& p, const glm::dvec3& n) const {
 
 void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const double* pz, const double* nx,
                            const double* ny, const double* nz, uint32_t* out) const {
-  const LookupFrame F = frame();
+  const LookupFrame F = frame_;  // a local copy: kept in registers
   const bool spot = light_.type == LightType::Spot;
   constexpr size_t kChunk = 64;
   double C[kChunk], Z[kChunk], X[kChunk], Y[kChunk], lim[kChunk];

@@ -59,7 +59,14 @@ struct ShadowMapStats {
   double side = 0;              // orthographic: world side of the map's square
 };
 
-struct LookupFrame;  // shadow_map.cpp
+// What a lookup needs of a map, in plain doubles (shadow_map.cpp): set once
+// when the map is finished, copied into locals by each batch of lookups.
+struct LookupFrame {
+  double ex, ey, ez, fx, fy, fz, rx, ry, rz, ux, uy, uz;  // the light view (View::project)
+  double sx, sy, ox, oy;
+  double lx, ly, lz;  // directional: unit vector towards the light
+  double bias, slope, texel, reach, D;
+};
 
 class ShadowMap {
  public:
@@ -102,10 +109,11 @@ class ShadowMap {
  private:
   void finish(TiledDepths centre);  // builds the n-SM
   double bias_for(double d, double cos_theta) const;  // bias_at from p's light depth and |N·L|
-  LookupFrame frame() const;  // the map's constants for a lookup
+  LookupFrame make_frame() const;  // the map's constants for a lookup (finish())
   uint32_t count(double X, double Y, double lim) const;
   Light light_;
   glm::dvec3 to_light_{0.0};  // directional: unit vector towards the light
+  LookupFrame frame_{};
   ShadowSettings s_;
   std::shared_ptr<View> view_;
   uint32_t size_ = 0, n_ = 1, levels_ = 1;

@@ -81,15 +81,7 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
     uint64_t written = 0;
   };
   tbb::enumerable_thread_specific<Work> work;
-  struct Copy : TileSink {
-    TiledDepths* c;
-    void tile(const TileRect& r, const float* px) override {
-      float* t = c->tile(r.x0 >> kMapTileShift, r.y0 >> kMapTileShift);
-      for (uint32_t y = 0; y < r.height(); ++y)
-        std::memcpy(t + size_t(y) * kMapTile, px + size_t(y) * r.width(), r.width() * sizeof(float));
-    }
-  } sink;
-  sink.c = &centre;
+  TiledDepthsSink sink(centre);
   run_tiles(grid, busy, threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
     Work& w = work.local();
     const uint32_t W = r.width();
@@ -113,12 +105,7 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
         }
     }
     w.out.resize(w.db.size());
-    for (size_t p = 0; p < w.out.size(); ++p) {
-      const double z = w.db[p];
-      float f = float(z);
-      if (double(f) < z) f = std::nextafter(f, INFINITY);  // never nearer than the caster
-      w.out[p] = f;
-    }
+    round_depths_up(w.db.data(), w.db.size(), w.out.data());
     fold_block_ranges(w.out.data(), W, r.x0, r.y0, r.x1, r.y1, blocks);  // whole blocks per tile
     return w.out.data();
   });

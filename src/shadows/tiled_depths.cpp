@@ -1,6 +1,8 @@
 #include "shadows/tiled_depths.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 
 #include "shadows/multi_depth.h"
 
@@ -21,6 +23,23 @@ float* TiledDepths::add_tile(uint32_t tx, uint32_t ty) {
     data_.resize(data_.size() + size_t(kMapTile) * kMapTile * n_, INFINITY);
   }
   return tile(tx, ty);
+}
+
+uint64_t round_depths_up(const double* z, size_t n, float* out) {
+  uint64_t covered = 0;
+  for (size_t p = 0; p < n; ++p) {
+    float f = float(z[p]);
+    if (double(f) < z[p]) f = std::nextafter(f, INFINITY);
+    out[p] = f;
+    covered += z[p] < INFINITY;
+  }
+  return covered;
+}
+
+void TiledDepthsSink::tile(const TileRect& r, const float* px) {
+  float* t = c->tile(r.x0 >> kMapTileShift, r.y0 >> kMapTileShift);
+  for (uint32_t y = 0; y < r.height(); ++y)
+    std::memcpy(t + size_t(y) * kMapTile, px + size_t(y) * r.width(), r.width() * sizeof(float));
 }
 
 void tile_depths(const float* z, uint32_t size, TiledDepths* out) {

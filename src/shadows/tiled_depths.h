@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "raster/tile_sink.h"
 #include "shadows/shadow_settings.h"
 
 namespace zs {
@@ -56,6 +57,18 @@ class TiledDepths {
   std::vector<float> data_;     // slots × kMapTile² × n, texel-major
   float empty_[16] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY,
                       INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY};
+};
+
+// A rendered tile's depths as stored: floats rounded upwards, so a stored
+// depth is never nearer than its caster. Returns the texels with a caster.
+uint64_t round_depths_up(const double* z, size_t n, float* out);
+
+// The tile loop's sink for a map being rendered: copies each finished tile
+// (kMapTile-aligned, its storage added beforehand) into `out`.
+struct TiledDepthsSink : TileSink {
+  explicit TiledDepthsSink(TiledDepths& out) : c(&out) {}
+  void tile(const TileRect& r, const float* px) override;
+  TiledDepths* c;
 };
 
 // A dense size × size map (row-major, one depth per texel) kept by tiles: the
