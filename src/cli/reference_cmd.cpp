@@ -72,14 +72,17 @@ void reference_spheres(SceneInput& in, const std::string& out, const std::string
   // Ambient occlusion: exact rays over the scene's directions, or Monte
   // Carlo with --ao-samples rays per pixel.
   std::vector<float> ao;
+  SphereAoSpec spec;
+  spec.dirs = sp.ao.directions ? ao_directions(sp.ao.directions) : std::vector<glm::dvec3>{};
+  spec.samples = ao_samples;
+  spec.alpha_occluders = sp.ao.alpha_occluders;
   const SphereReferenceImage img =
-      sp.ao.directions
-          ? render_sphere_reference_ao(in.spheres, colors, sp.shading, view, rs.background, threads,
-                                       ao_directions(sp.ao.directions), ao_samples, &ao)
-      : sp.mode == SphereMode::Opaque
-          ? render_sphere_reference(in.spheres, colors, sp.shading, view, rs.background, threads)
+      sp.mode == SphereMode::Opaque
+          ? (sp.ao.directions
+                 ? render_sphere_reference_ao(in.spheres, colors, sp.shading, view, rs.background, threads, spec, &ao)
+                 : render_sphere_reference(in.spheres, colors, sp.shading, view, rs.background, threads))
           : render_sphere_reference_translucent(in.spheres, colors, sp.shading, view, rs.background, threads,
-                                                sp.front_surfaces_only);
+                                                sp.front_surfaces_only, sp.ao.directions ? &spec : nullptr, &ao);
   write_rgba_z(out, img.rgba, img.z, sp.ao.directions ? &ao : nullptr);
   if (!stats.empty()) {
     nlohmann::json j = {{"time_ms", {{"build", img.ms_build}, {"trace", img.ms_trace}, {"total", img.ms_build + img.ms_trace}}},

@@ -168,7 +168,10 @@ void write_sphere_stats(const std::string& path, const SphereStats& S, const Sce
        {{"directions", in.scene.spheres.ao.directions},
         {"map_size", in.scene.spheres.ao.map_size},
         {"depth", in.scene.spheres.ao.impostor_depth ? "impostor" : "disc"},
-        {"map_bytes", S.ao_map_bytes}}},
+        {"occluders", in.scene.spheres.ao.alpha_occluders ? "alpha" : "opaque"},
+        {"map_bytes", S.ao_map_bytes},
+        {"batches", S.ao_batches},
+        {"translucent_fragments", S.ao_translucent_fragments}}},
       {"spheres", {{"total", S.spheres}, {"invalid", S.invalid}, {"skipped_by_reader", in.spheres.invalid}}},
       {"culling",
        {{"enabled", in.scene.spheres.culling},
@@ -240,16 +243,13 @@ void run_spheres(SceneInput& in, const std::string& out_path, const std::string&
       srs.ao.directions ? std::vector<std::string>{"R", "G", "B", "A", "Z", "AO"} : std::vector<std::string>{};
   const uint64_t held = sphere_set_bytes(in.spheres) + colors.size() * sizeof(glm::vec4);
   // AO maps: built once for the set and shared by every frame (they do not
-  // depend on the view).
+  // depend on the view), when they fit the budget; else every frame builds
+  // and consumes them in batches (the renderer says when it cannot).
   std::shared_ptr<const SphereAoMaps> ao;
-  if (srs.ao.directions && srs.mode == SphereMode::Opaque) {
+  if (srs.ao.directions) {
     const uint64_t budget = srs.memory_budget_bytes ? srs.memory_budget_bytes : default_memory_budget();
-    if (held + sphere_ao_bytes_bound(srs) > budget)
-      throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold " +
-                               std::to_string(srs.ao.directions) + " AO maps of " + std::to_string(srs.ao.map_size) +
-                               "² (up to " + bytes_str(sphere_ao_bytes_bound(srs)) +
-                               "); raise --memory-budget or lower ao.map_size or ao.directions");
-    ao = sphere_ao_maps(in.spheres, srs);
+    ao = sphere_ao_maps(in.spheres, colors, srs, budget > held ? budget - held : 0);
+    if (!ao) srs.ao.batches = true;
   }
   if (render_mpi_enabled()) {
     std::unique_ptr<ImageTileWriter> w;

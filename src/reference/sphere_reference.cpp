@@ -380,11 +380,19 @@ SphereReferenceImage render_sphere_reference(const SphereSet& spheres, const std
                      });
 }
 
+namespace {
+double traced_ao(const SphereReference& ref, const std::vector<glm::vec4>& colors, const SphereAoSpec& spec,
+                 const glm::dvec3& P, const glm::dvec3& N, uint32_t id, uint64_t seed);
+}  // namespace
+
 SphereReferenceImage render_sphere_reference_translucent(const SphereSet& spheres,
                                                          const std::vector<glm::vec4>& colors, const Shading& shading,
                                                          const View& view, const double background[4], int threads,
-                                                         bool front_only) {
+                                                         bool front_only, const SphereAoSpec* ao,
+                                                         std::vector<float>* ao_out) {
   const glm::dvec3 F = view.forward();
+  const uint32_t W = view.width();
+  if (ao) ao_out->assign(size_t(W) * view.height(), std::numeric_limits<float>::infinity());
   return trace_image(spheres, colors, view, threads,
                      [&](const SphereReference& ref, uint32_t i, uint32_t j, float* px, double* depth) {
                        thread_local std::vector<SphereCrossing> xs;
@@ -409,7 +417,16 @@ SphereReferenceImage render_sphere_reference_translucent(const SphereSet& sphere
                          if (glm::dot(n, u) > 0) n = -n;  // facing the viewer
                          const glm::dvec3 nv = glm::normalize(
                              glm::dvec3(glm::dot(n, view.right()), glm::dot(n, view.up()), -glm::dot(n, F)));
-                         const glm::dvec3 rgb = shade(shading, glm::dvec3(col.r, col.g, col.b), nv, v);
+                         glm::dvec3 rgb = shade(shading, glm::dvec3(col.r, col.g, col.b), nv, v);
+                         if (ao) {  // at the crossing, with the sphere's outward normal
+                           const glm::dvec3 P = o + (x.depth / k) * u;
+                           const glm::dvec3 out = glm::normalize(P - spheres.centres[x.id]);
+                           const double a_o = traced_ao(ref, colors, *ao, P, out, x.id,
+                                                        (uint64_t(j) * W + i) * 1024 + (&x - xs.data()));
+                           rgb *= a_o;
+                           if (*depth == std::numeric_limits<double>::infinity())
+                             (*ao_out)[size_t(j) * W + i] = float(a_o);  // the nearest crossing's, as the Z
+                         }
                          const double c[4] = {rgb.r * a, rgb.g * a, rgb.b * a, a};
                          const double m = 1.0 - acc[3];
                          for (int q = 0; q < 4; ++q) acc[q] += c[q] * m;
@@ -426,10 +443,64 @@ SphereReferenceImage render_sphere_reference_translucent(const SphereSet& sphere
 
 namespace zs {
 
+namespace {
+
+// AO at P (world) with unit outward normal N on sphere `id`, by exact rays:
+// over spec.dirs with the renderer's weights (samples 0), else a
+// cosine-weighted Monte Carlo estimate (Malley) from a fixed stream `seed`.
+double traced_ao(const SphereReference& ref, const std::vector<glm::vec4>& colors, const SphereAoSpec& spec,
+                 const glm::dvec3& P, const glm::dvec3& N, uint32_t id, uint64_t seed) {
+  thread_local std::vector<SphereCrossing> xs;
+  // V(P, w): no other sphere crosses the ray from P towards w (P's own
+  // sphere is left behind: it is convex and N·w > 0). Alpha occluders:
+  // Π(1 − α) over the spheres it crosses, each once (entered ahead of P, or
+  // left ahead of P when P is inside it).
+  auto open = [&](const glm::dvec3& w) {
+    ref.ray_crossings(P, w, &xs);
+    double pass = 1;
+    for (size_t q = 0; q < xs.size(); ++q) {
+      const SphereCrossing& x = xs[q];
+      if (x.id == id || !(x.depth > 0)) continue;
+      if (!spec.alpha_occluders) return 0.0;
+      bool seen = false;
+      for (size_t e = 0; e < q && !seen; ++e) seen = xs[e].id == x.id && xs[e].depth > 0;
+      if (seen) continue;
+      const float a = colors[x.id].a;
+      pass *= a >= 1.f ? 0.0 : a > 0.f ? 1.0 - double(a) : 1.0;
+    }
+    return pass;
+  };
+  if (spec.samples == 0) {  // the renderer's directions, traced exactly
+    double num = 0, den = 0;
+    for (const glm::dvec3& w : spec.dirs) {
+      const double c = glm::dot(N, w);
+      if (!(c > 0)) continue;
+      den += c;
+      num += c * open(w);
+    }
+    return den > 0 ? num / den : 1.0;
+  }
+  uint64_t st = seed * 0x9E3779B97F4A7C15ull + 1;
+  auto next = [&] {
+    st ^= st << 13, st ^= st >> 7, st ^= st << 17;
+    return double(st >> 11) * 0x1p-53;
+  };
+  const glm::dvec3 t = glm::normalize(glm::cross(N, std::abs(N.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 b = glm::cross(N, t);
+  double hits = 0;
+  for (uint32_t q = 0; q < spec.samples; ++q) {
+    const double r = std::sqrt(next()), phi = 2 * M_PI * next();
+    const double x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0, 1 - r * r));
+    hits += open(glm::normalize(x * t + y * b + z * N));
+  }
+  return hits / spec.samples;
+}
+
+}  // namespace
+
 SphereReferenceImage render_sphere_reference_ao(const SphereSet& spheres, const std::vector<glm::vec4>& colors,
                                                 const Shading& shading, const View& view, const double background[4],
-                                                int threads, const std::vector<glm::dvec3>& dirs, uint32_t samples,
-                                                std::vector<float>* ao_out) {
+                                                int threads, const SphereAoSpec& spec, std::vector<float>* ao_out) {
   const uint32_t W = view.width();
   ao_out->assign(size_t(W) * view.height(), std::numeric_limits<float>::infinity());
   auto to_eye = [&](const glm::dvec3& u) {
@@ -437,7 +508,6 @@ SphereReferenceImage render_sphere_reference_ao(const SphereSet& spheres, const 
   };
   return trace_image(spheres, colors, view, threads,
                      [&](const SphereReference& ref, uint32_t i, uint32_t j, float* px, double* depth) {
-                       thread_local std::vector<SphereCrossing> xs;
                        uint32_t id;
                        glm::dvec3 n;
                        if (!ref.nearest(i, j, depth, &id, &n)) {
@@ -450,41 +520,7 @@ SphereReferenceImage render_sphere_reference_ao(const SphereSet& spheres, const 
                        const glm::dvec3 P = o + (*depth / k) * u;
                        const glm::dvec3 N =
                            glm::normalize(n.x * view.right() + n.y * view.up() - n.z * view.forward());
-                       // V(P, w): no other sphere crosses the ray from P towards w (P's own
-                       // sphere is left behind: it is convex and N·w > 0).
-                       auto open = [&](const glm::dvec3& w) {
-                         ref.ray_crossings(P, w, &xs);
-                         for (const SphereCrossing& x : xs)
-                           if (x.id != id && x.depth > 0) return false;
-                         return true;
-                       };
-                       double ao = 1;
-                       if (samples == 0) {  // the renderer's directions, traced exactly
-                         double num = 0, den = 0;
-                         for (const glm::dvec3& w : dirs) {
-                           const double c = glm::dot(N, w);
-                           if (!(c > 0)) continue;
-                           den += c;
-                           num += open(w) ? c : 0.0;
-                         }
-                         ao = den > 0 ? num / den : 1.0;
-                       } else {  // cosine-weighted Monte Carlo (Malley), a fixed stream per pixel
-                         uint64_t st = (uint64_t(j) * W + i) * 0x9E3779B97F4A7C15ull + 1;
-                         auto next = [&] {
-                           st ^= st << 13, st ^= st >> 7, st ^= st << 17;
-                           return double(st >> 11) * 0x1p-53;
-                         };
-                         const glm::dvec3 t = glm::normalize(glm::cross(N, std::abs(N.x) < 0.6 ? glm::dvec3(1, 0, 0)
-                                                                                             : glm::dvec3(0, 1, 0)));
-                         const glm::dvec3 b = glm::cross(N, t);
-                         uint32_t hits = 0;
-                         for (uint32_t q = 0; q < samples; ++q) {
-                           const double r = std::sqrt(next()), phi = 2 * M_PI * next();
-                           const double x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0, 1 - r * r));
-                           hits += open(glm::normalize(x * t + y * b + z * N));
-                         }
-                         ao = double(hits) / samples;
-                       }
+                       const double ao = traced_ao(ref, colors, spec, P, N, id, uint64_t(j) * W + i);
                        const glm::vec4& c = colors[id];
                        const glm::dvec3 rgb = ao * shade(shading, glm::dvec3(c.r, c.g, c.b), n, to_eye(u));
                        px[0] = float(rgb.r), px[1] = float(rgb.g), px[2] = float(rgb.b), px[3] = 1.f;

@@ -95,21 +95,32 @@ SphereReferenceImage render_sphere_reference(const SphereSet& spheres, const std
 // facing the viewer, the sphere's alpha; alpha 0 adds nothing, an alpha-1
 // sphere ends the ray) over `background`; no early stop, no layer cap. Z:
 // the nearest crossing of a sphere with alpha > 0. The exact answer the
-// translucent modes are measured against.
+// translucent modes are measured against. With `ao` (below): each crossing's
+// colour × its AO, taken with the sphere's outward normal; `ao_out` per
+// pixel: the nearest crossing's AO (+inf where none).
+struct SphereAoSpec;
 SphereReferenceImage render_sphere_reference_translucent(const SphereSet& spheres,
                                                          const std::vector<glm::vec4>& colors, const Shading& shading,
                                                          const View& view, const double background[4], int threads,
-                                                         bool front_only);
+                                                         bool front_only, const SphereAoSpec* ao = nullptr,
+                                                         std::vector<float>* ao_out = nullptr);
 
-// Opaque scenes with ambient occlusion: the nearest surface as above, its
-// AO from exact rays (no map): with samples = 0 over `dirs` (the renderer's
-// directions and weights, isolating the maps' error), else a cosine-weighted
-// Monte Carlo estimate with that many rays per pixel (a fixed random stream
-// per pixel; isolating the direction count's error). Colour = AO × shaded;
-// `ao` per pixel, +inf where nothing is hit.
+// Ambient occlusion by exact rays (no map): with samples = 0 over `dirs`
+// (the renderer's directions and weights, isolating the maps' error), else
+// a cosine-weighted Monte Carlo estimate with that many rays per point (a
+// fixed random stream per pixel; isolating the direction count's error).
+// `alpha_occluders`: a sphere the ray crosses passes 1 − alpha of the light
+// (the colours' alpha) instead of none.
+struct SphereAoSpec {
+  std::vector<glm::dvec3> dirs;
+  uint32_t samples = 0;
+  bool alpha_occluders = false;
+};
+
+// Opaque scenes with AO: the nearest surface as above, colour = AO ×
+// shaded; `ao` per pixel, +inf where nothing is hit.
 SphereReferenceImage render_sphere_reference_ao(const SphereSet& spheres, const std::vector<glm::vec4>& colors,
                                                 const Shading& shading, const View& view, const double background[4],
-                                                int threads, const std::vector<glm::dvec3>& dirs, uint32_t samples,
-                                                std::vector<float>* ao);
+                                                int threads, const SphereAoSpec& spec, std::vector<float>* ao);
 
 }  // namespace zs

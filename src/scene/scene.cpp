@@ -154,7 +154,7 @@ void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
     if (a.contains("occluders")) {
       const json& o = a["occluders"];
       if (!o.is_string() || (o != "opaque" && o != "alpha")) c.fail("ao.occluders must be \"opaque\" or \"alpha\"");
-      if (o == "alpha") c.fail("ao.occluders \"alpha\" is not implemented yet; use \"opaque\"");
+      A.alpha_occluders = o == "alpha";
     }
   }
   if (j.contains("render")) {
@@ -193,7 +193,6 @@ void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
     if (r.contains("memory_budget_mb"))
       s->settings.memory_budget_bytes = uint64_t(memory_budget_mb(c, r["memory_budget_mb"]) * 1048576.0);
   }
-  if (sp.ao.directions && sp.mode != SphereMode::Opaque) c.fail("ao needs render.mode \"opaque\"");
 }
 
 }  // namespace

@@ -376,6 +376,18 @@ uint32_t ShadowMap::lit_count(const glm::dvec3& p, const glm::dvec3& n) const {
   return out;
 }
 
+void ShadowMap::locate(const glm::dvec3& p, const glm::dvec3& n, uint32_t* x, uint32_t* y, double* lim) const {
+  double c, z, X, Y;
+  if (light_.type == LightType::Spot)
+    prepare<true>(frame_, light_, p.x, p.y, p.z, n.x, n.y, n.z, &c, &z, &X, &Y, lim);
+  else
+    prepare<false>(frame_, light_, p.x, p.y, p.z, n.x, n.y, n.z, &c, &z, &X, &Y, lim);
+  const int Dm = int(size_) - 1;
+  const int bx = X == X ? int(std::floor(X + 0.5)) : 0, by = Y == Y ? int(std::floor(Y + 0.5)) : 0;
+  *x = uint32_t(std::clamp(bx, 0, Dm));
+  *y = uint32_t(std::clamp(by, 0, Dm));
+}
+
 void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const double* pz, const double* nx,
                            const double* ny, const double* nz, uint32_t* out) const {
   const LookupFrame F = frame_;  // a local copy: kept in registers

@@ -95,6 +95,11 @@ class ShadowMap {
   void lit_counts(size_t n, const double* px, const double* py, const double* pz, const double* nx, const double* ny,
                   const double* nz, uint32_t* out) const;
 
+  // The texel a one-texel kernel reads for p (nearest, clamped to the map)
+  // and p's test limit d − bias: what other per-texel data of the map (the
+  // sphere AO's translucent lists) need.
+  void locate(const glm::dvec3& p, const glm::dvec3& n, uint32_t* x, uint32_t* y, double* lim) const;
+
   // Texel (x, y)'s j-th depth (j < depths()); the n-SM as built.
   float depth(uint32_t x, uint32_t y, uint32_t j = 0) const { return md_.texel(x, y)[j]; }
   uint32_t size() const { return size_; }

@@ -21,10 +21,12 @@
 #include <glm/vec3.hpp>
 
 #include "shadows/shadow_map.h"
+#include "shadows/transmittance_lists.h"
 
 namespace zs {
 
 enum class SphereDepth { CentreDisc, Impostor };
+struct SphereMapScratch;  // a thread's buffers, reused from map to map
 
 struct SphereMapStats {
   double ms = 0;
@@ -34,28 +36,42 @@ struct SphereMapStats {
 // The map for direction `omega` (unit, towards the light) of spheres
 // (centres, radii), `size`² texels; `s` gives the bias (world units) for the
 // lookups (depths and pcf are used as given, normally 1 and 1).
+// `alpha` (one opacity per sphere; null: every sphere opaque): spheres of
+// alpha >= 1 go into the depths, 0 < alpha < 1 into `translucent` (needed
+// then), and the rest into neither.
 ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii,
                            const glm::dvec3& omega, uint32_t size, SphereDepth mode, const ShadowSettings& s,
-                           int threads, SphereMapStats* stats = nullptr);
+                           int threads, SphereMapStats* stats = nullptr, const std::vector<float>* alpha = nullptr,
+                           TransmittanceLists* translucent = nullptr, SphereMapScratch* scratch = nullptr);
 
 // Every direction's map for a sphere set: the AO preprocessing (§2.4.5),
 // built once and reused by every frame of a static set. Maps are built in
 // parallel over directions (each one by one thread) when there are at least
 // as many directions as threads, else one after another over tiles; the maps
 // are the same either way.
+// With `alpha` (occluders "alpha"), each map also has its translucent lists.
 struct SphereAoMaps {
   std::vector<glm::dvec3> dirs;
   std::vector<ShadowMap> maps;
+  std::vector<TransmittanceLists> translucent;  // one per map, or none (opaque occluders)
   double ms_build = 0;
   uint64_t bytes = 0;
+  uint64_t translucent_fragments = 0;
 };
 SphereAoMaps build_sphere_ao_maps(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii,
                                   const std::vector<glm::dvec3>& dirs, uint32_t size, SphereDepth mode,
-                                  const ShadowSettings& s, int threads);
+                                  const ShadowSettings& s, int threads, const std::vector<float>* alpha = nullptr);
 
 // AO(P) = Σ_k V_k(P)·max(0, N·ω_k) / Σ_k max(0, N·ω_k), V_k the lit fraction
-// of map k (built for dirs[k]); N unit. 1 when no direction faces N.
-double ambient_occlusion(const std::vector<ShadowMap>& maps, const std::vector<glm::dvec3>& dirs, const glm::dvec3& p,
-                         const glm::dvec3& n);
+// of map k (built for dirs[k]) times, with translucent lists, the
+// transmittance Π(1 − α) of the translucent discs between P and the light;
+// N unit. 1 when no direction faces N.
+double ambient_occlusion(const SphereAoMaps& ao, const glm::dvec3& p, const glm::dvec3& n);
+// The sums of that formula for n points (world positions and unit normals as
+// arrays) over this set's directions, added to num and den in direction
+// order: a set of maps can be consumed in batches, and every batch adds the
+// same terms the whole set would.
+void accumulate_ao(const SphereAoMaps& ao, size_t n, const double* px, const double* py, const double* pz,
+                   const double* nx, const double* ny, const double* nz, double* num, double* den);
 
 }  // namespace zs

@@ -30,7 +30,7 @@ void TranslucentTile::opaque_background() {
 double* TranslucentTile::composite_layer(size_t p, const FragKey& k) {
   double c[4];
   color(p, k, c);
-  if (zfirst_[p] == INFINITY) zfirst_[p] = k.z;
+  note_first(p, k);
   double* a = &acc_[p * 4];
   composite_under(a, c);
   ++S_->composited;
@@ -76,7 +76,7 @@ void TranslucentTile::peel() {
     if (bg_[p].z == INFINITY || gone_[p] == -INFINITY) continue;
     double c[4];
     color(p, bg_[p], c);
-    if (zfirst_[p] == INFINITY) zfirst_[p] = bg_[p].z;
+    note_first(p, bg_[p]);
     composite_under(&acc_[p * 4], c);
     ++S_->composited;
   }
@@ -124,7 +124,7 @@ void TranslucentTile::dual_peel() {
     if (!any) break;
   }
   for (size_t p = 0; p < n; ++p) {
-    if (zfirst_[p] == INFINITY && bg_[p].z != INFINITY) zfirst_[p] = bg_[p].z;
+    if (bg_[p].z != INFINITY) note_first(p, bg_[p]);
     composite_under(&acc_[p * 4], &back_[p * 4]);  // front layers over back layers (and the background)
     S_->layers_max = std::max<uint64_t>(S_->layers_max, layers_[p]);
     S_->layer_sum += layers_[p];
@@ -145,7 +145,7 @@ void TranslucentTile::weighted() {
     color(p, k, c);
     double* x = &acc_[p * 4];
     for (int i = 0; i < 4; ++i) x[i] += c[i];
-    zfirst_[p] = std::min(zfirst_[p], k.z);
+    note_first(p, k);
     ++S_->composited;
     return true;
   });
@@ -154,7 +154,7 @@ void TranslucentTile::weighted() {
     double w[4], out[4];
     if (bg_[p].z != INFINITY) {
       color(p, bg_[p], w);
-      zfirst_[p] = std::min(zfirst_[p], bg_[p].z);
+      note_first(p, bg_[p]);
     } else {
       std::copy(image_bg, image_bg + 4, w);
     }

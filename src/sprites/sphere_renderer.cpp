@@ -50,6 +50,10 @@ struct alignas(128) TileState {
   std::vector<double> zlow;  // per block of the current sphere's box: its depth bound there (+inf: hidden)
   FaceSpans spans;
   std::vector<float> out;  // RGBA + Z per pixel
+  // The tile's visible pixels for shading and AO: pixel index, colour before
+  // AO, world position and normal, and the AO sums.
+  std::vector<uint32_t> vpix;
+  std::vector<double> vrgb, vpx, vpy, vpz, vnx, vny, vnz, vnum, vden;
   SphereStats stats;       // this thread's per-tile counts
   std::unique_ptr<TranslucentTile> translucent;  // the translucent modes' scratch
 };
@@ -61,13 +65,22 @@ constexpr uint64_t kTilePixelBytes = 12;  // depth and id; plus 4 per output cha
 
 uint32_t sphere_channels(const SphereRenderSettings& rs) { return rs.ao.directions ? 6 : 5; }
 
-uint64_t sphere_ao_bytes_bound(const SphereRenderSettings& rs) {
-  return uint64_t(rs.ao.directions) * rs.ao.map_size * rs.ao.map_size * 4;  // every tile of every map stored
+uint64_t sphere_ao_map_bytes_bound(const SphereRenderSettings& rs) {
+  const uint64_t D = rs.ao.map_size, tiles = (D + kMapTile - 1) / kMapTile, blocks = (D + 7) / 8;
+  return D * D * 4 + blocks * blocks * 8 + tiles * tiles * 4;  // every tile stored, its block ranges, its slots
 }
 
-std::shared_ptr<const SphereAoMaps> sphere_ao_maps(const SphereSet& s, const SphereRenderSettings& rs) {
-  // Default bias: 1 % of the smallest radius (discs cannot shadow their own
-  // sphere; the bias only absorbs rounding). Impostor depth needs the slope bias.
+uint64_t sphere_ao_bytes_bound(const SphereRenderSettings& rs) {
+  return uint64_t(rs.ao.directions) * sphere_ao_map_bytes_bound(rs);
+}
+
+namespace {
+
+// The maps of directions `dirs` (bias defaults resolved: 1 % of the smallest
+// radius; discs cannot shadow their own sphere, the bias only absorbs
+// rounding; impostor depth needs the slope bias).
+SphereAoMaps build_ao(const SphereSet& s, const std::vector<glm::vec4>& colors, const SphereRenderSettings& rs,
+                      const std::vector<glm::dvec3>& dirs) {
   double rmin = INFINITY;
   for (double r : s.radii)
     if (r > 0 && std::isfinite(r)) rmin = std::min(rmin, r);
@@ -75,9 +88,24 @@ std::shared_ptr<const SphereAoMaps> sphere_ao_maps(const SphereSet& s, const Sph
   ss.map_size = rs.ao.map_size;
   ss.bias = rs.ao.bias >= 0 ? rs.ao.bias : (std::isfinite(rmin) ? 0.01 * rmin : 0.0);
   ss.slope_bias = rs.ao.impostor_depth ? 1.5 : 0.0;
-  return std::make_shared<const SphereAoMaps>(build_sphere_ao_maps(
-      s.centres, s.radii, ao_directions(rs.ao.directions), rs.ao.map_size,
-      rs.ao.impostor_depth ? SphereDepth::Impostor : SphereDepth::CentreDisc, ss, std::max(1, rs.threads)));
+  std::vector<float> alpha;
+  if (rs.ao.alpha_occluders) {
+    alpha.resize(colors.size());
+    for (size_t i = 0; i < colors.size(); ++i) alpha[i] = colors[i].a;
+  }
+  return build_sphere_ao_maps(s.centres, s.radii, dirs, rs.ao.map_size,
+                              rs.ao.impostor_depth ? SphereDepth::Impostor : SphereDepth::CentreDisc, ss,
+                              std::max(1, rs.threads), rs.ao.alpha_occluders ? &alpha : nullptr);
+}
+
+}  // namespace
+
+std::shared_ptr<const SphereAoMaps> sphere_ao_maps(const SphereSet& s, const std::vector<glm::vec4>& colors,
+                                                   const SphereRenderSettings& rs, uint64_t available) {
+  if (sphere_ao_bytes_bound(rs) > available) return nullptr;
+  auto maps = std::make_shared<const SphereAoMaps>(build_ao(s, colors, rs, ao_directions(rs.ao.directions)));
+  if (maps->bytes > available) return nullptr;  // alpha occluders' lists: known only once built
+  return maps;
 }
 
 uint64_t sphere_set_bytes(const SphereSet& s) {
@@ -99,8 +127,16 @@ struct SphereRenderer::Impl {
   tbb::enumerable_thread_specific<TileState> states;
   uint64_t kbuf_bytes = 0;
   static constexpr uint64_t kMaxKbufBytes = uint64_t(512) << 20;
-  // Ambient occlusion: the directions and one map each (null: off).
+  // Ambient occlusion: the directions and one map each (null: off, or
+  // batches: ao_batch maps at a time, built by every render_tiles(), their
+  // sums per image pixel in ao_num).
   std::shared_ptr<const SphereAoMaps> ao;
+  std::vector<glm::dvec3> ao_dirs;
+  uint32_t ao_batch = 0;
+  uint64_t ao_budget_left = 0;
+  std::vector<double> ao_num;
+  double ms_ao_batches = 0;
+  uint64_t ao_batch_bytes = 0;
 
   Impl(const SphereSet& spheres, const std::vector<glm::vec4>& c, const SphereGrid& grid_, const SphereRenderSettings& settings,
        uint64_t extra_bytes, std::shared_ptr<const SphereAoMaps> ao_maps)
@@ -132,15 +168,39 @@ struct SphereRenderer::Impl {
     };
     check(shared + s.size() * 4);
     if (rs.ao.directions) {
-      if (rs.mode != SphereMode::Opaque) throw std::runtime_error("ao needs render.mode \"opaque\"");
-      if (!ao) {
-        check(shared + sphere_ao_bytes_bound(rs));
-        ao = sphere_ao_maps(s, rs);
-        S.ms_ao_maps = ao->ms_build;
+      ao_dirs = ao_directions(rs.ao.directions);
+      if (!ao && !rs.ao.batches) {
+        ao = sphere_ao_maps(s, colors, rs, budget > shared ? budget - shared : 0);  // null: they do not all fit
+        if (ao) S.ms_ao_maps = ao->ms_build;
       }
-      S.ao_map_bytes = ao->bytes;
-      shared += ao->bytes;
-      check(shared);
+      if (ao) {
+        S.ao_map_bytes = ao->bytes;
+        S.ao_translucent_fragments = ao->translucent_fragments;
+        shared += ao->bytes;
+        check(shared);
+      } else {
+        const std::string need = std::to_string(rs.ao.directions) + " AO maps of " + std::to_string(rs.ao.map_size) +
+                                 "² (up to " + bytes_str(sphere_ao_bytes_bound(rs)) + ")";
+        if (rs.mode != SphereMode::Opaque)
+          throw std::runtime_error(std::string("ao in render.mode \"") + to_string(rs.mode) +
+                                   "\" needs every AO map in memory, and the budget of " + bytes_str(budget) +
+                                   " cannot hold " + need + "; raise --memory-budget or lower ao.map_size or ao.directions");
+        // Batches (the seed's several passes when the maps outnumber the
+        // texture units, §2.4.6): per frame, the image's AO sums, and as many
+        // maps at once as the rest of the budget holds (alpha occluders: at
+        // most one per thread, their lists checked as they are built).
+        const uint64_t sums = uint64_t(rs.width) * rs.height * sizeof(double);
+        const uint64_t per_map = sphere_ao_map_bytes_bound(rs);
+        if (shared + sums + per_map > budget)
+          throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold even one of " + need +
+                                   " with the image's AO sums (" + bytes_str(sums) +
+                                   "); raise --memory-budget or lower ao.map_size");
+        ao_batch = uint32_t(std::min<uint64_t>(rs.ao.directions, (budget - shared - sums) / per_map));
+        if (rs.ao.alpha_occluders) ao_batch = std::min<uint32_t>(ao_batch, uint32_t(threads));
+        S.ao_batches = (rs.ao.directions + ao_batch - 1) / ao_batch;
+        shared += sums + uint64_t(ao_batch) * per_map;
+        ao_budget_left = budget - shared + uint64_t(ao_batch) * per_map;  // what a batch may really take
+      }
     }
 
     // Translucent modes: only opaque spheres hide others (culling stays
@@ -270,9 +330,17 @@ struct SphereRenderer::Impl {
     SphereStats& S = ts.stats;
     if (rs.mode != SphereMode::Opaque) {
       if (!ts.translucent) ts.translucent = std::make_unique<TranslucentTile>();
-      const TranslucentFrame f{&s, &g, &colors, &rs, &view, cam, kbuf_bytes};
+      const TranslucentFrame f{&s, &g, &colors, &rs, &view, cam, kbuf_bytes, ao.get()};
       return ts.translucent->render(f, bin_ids.data() + bin_offset[t], bin_offset[t + 1] - bin_offset[t], r, S);
     }
+    raster(ts, t, r);
+    resolve(ts, r);
+    return ts.out.data();
+  }
+
+  // The opaque depth pass: nearest (depth, id) per pixel of the tile.
+  void raster(TileState& ts, uint32_t t, const TileRect& r) {
+    SphereStats& S = ts.stats;
     const uint32_t w = r.width(), h = r.height();
     ts.depth.reset(w, h, 1);
     const uint32_t nb = ((w + kBlock - 1) / kBlock) * ((h + kBlock - 1) / kBlock);
@@ -393,16 +461,14 @@ struct SphereRenderer::Impl {
       }
       if (S.depth_writes != writes_before) mark_blocks(ts, bw, i0, i1, j0, j1);
     }
-    resolve(ts, r);
-    return ts.out.data();
   }
 
-  void resolve(TileState& ts, const TileRect& r) {
+  // The visible pixels of a rastered tile: their index, and their world
+  // position and normal (with `colour`, also their shaded colour before AO).
+  void gather(TileState& ts, const TileRect& r, bool colour) {
     const uint32_t w = r.width(), h = r.height();
-    const uint32_t C = grid.channels;
-    ts.out.resize(size_t(w) * h * C);
-    float* out = ts.out.data();
-    const double* bg = rs.background;
+    ts.vpix.clear(), ts.vrgb.clear();
+    ts.vpx.clear(), ts.vpy.clear(), ts.vpz.clear(), ts.vnx.clear(), ts.vny.clear(), ts.vnz.clear();
     // Neighbouring pixels mostly show the same sphere: its set-up is kept
     // while the id repeats (the same values, so the same image).
     uint32_t last = kNoId;
@@ -412,13 +478,8 @@ struct SphereRenderer::Impl {
     for (uint32_t y = 0; y < h; ++y)
       for (uint32_t x = 0; x < w; ++x) {
         const size_t p = size_t(y) * w + x;
-        float* o = out + p * C;
         const uint32_t id = ts.depth.id(p);
-        if (id == kNoId) {
-          for (int k = 0; k < 4; ++k) o[k] = float(bg[k]);
-          for (uint32_t k = 4; k < C; ++k) o[k] = INFINITY;
-          continue;
-        }
+        if (id == kNoId) continue;
         const double X = double(r.x0 + x), Y = double(r.y0 + y);
         if (id != last) {
           c = to_camera(view, s.centres[id]);
@@ -434,21 +495,109 @@ struct SphereRenderer::Impl {
         if (hit.inside) n = -n;  // seen from inside: the surface faces the eye the other way
         // Camera space (x right, y up, z forward) to view space (z towards the viewer).
         n = glm::normalize(glm::dvec3(n.x, n.y, -n.z));
-        const glm::dvec3 v = view.perspective() ? glm::normalize(glm::dvec3(-P.x, -P.y, P.z)) : glm::dvec3(0, 0, 1);
-        const glm::vec4& col = colors[id];
-        glm::dvec3 rgb = shade(rs.shading, glm::dvec3(col.r, col.g, col.b), n, v);
-        if (ao) {
+        ts.vpix.push_back(uint32_t(p));
+        if (colour) {
+          const glm::dvec3 v = view.perspective() ? glm::normalize(glm::dvec3(-P.x, -P.y, P.z)) : glm::dvec3(0, 0, 1);
+          const glm::vec4& col = colors[id];
+          const glm::dvec3 rgb = shade(rs.shading, glm::dvec3(col.r, col.g, col.b), n, v);
+          ts.vrgb.insert(ts.vrgb.end(), {rgb.r, rgb.g, rgb.b, hit.t});
+        }
+        if (rs.ao.directions) {
           // World point and normal (camera space x right, y up, z forward).
           const glm::dvec3 Pw = view.eye() + P.x * view.right() + P.y * view.up() + P.z * view.forward();
           const glm::dvec3 Nw = glm::normalize(n.x * view.right() + n.y * view.up() - n.z * view.forward());
-          const double a = ambient_occlusion(ao->maps, ao->dirs, Pw, Nw);
-          rgb *= a;  // final colour = AO × shaded colour (digest §2.4.6)
-          o[5] = float(a);
+          ts.vpx.push_back(Pw.x), ts.vpy.push_back(Pw.y), ts.vpz.push_back(Pw.z);
+          ts.vnx.push_back(Nw.x), ts.vny.push_back(Nw.y), ts.vnz.push_back(Nw.z);
         }
-        o[0] = float(rgb.r), o[1] = float(rgb.g), o[2] = float(rgb.b), o[3] = 1.f;  // opaque: alpha ignored
-        o[4] = float(hit.t);
-        ++ts.stats.rendered_pixels;
       }
+  }
+
+  // Shades each visible pixel once (deferred, §2.4.6): its colour, then AO
+  // over the tile's visible pixels direction by direction (the maps held, or
+  // the sums the batches left in ao_num); colour = AO × shaded colour.
+  void resolve(TileState& ts, const TileRect& r) {
+    const uint32_t w = r.width(), h = r.height();
+    const uint32_t C = grid.channels;
+    ts.out.resize(size_t(w) * h * C);
+    float* out = ts.out.data();
+    const double* bg = rs.background;
+    for (size_t p = 0; p < size_t(w) * h; ++p) {
+      float* o = out + p * C;
+      for (int k = 0; k < 4; ++k) o[k] = float(bg[k]);
+      for (uint32_t k = 4; k < C; ++k) o[k] = INFINITY;
+    }
+    gather(ts, r, true);
+    const size_t n = ts.vpix.size();
+    if (rs.ao.directions) {
+      ts.vnum.assign(n, 0.0);
+      ts.vden.assign(n, 0.0);
+      if (ao) {
+        accumulate_ao(*ao, n, ts.vpx.data(), ts.vpy.data(), ts.vpz.data(), ts.vnx.data(), ts.vny.data(),
+                      ts.vnz.data(), ts.vnum.data(), ts.vden.data());
+      } else {
+        // Batches: the numerators summed over every batch; the weights again
+        // here, in the same direction order, so the same sums.
+        for (size_t i = 0; i < n; ++i) ts.vnum[i] = ao_num[image_pixel(r, ts.vpix[i])];
+        for (const glm::dvec3& d : ao_dirs)
+          for (size_t i = 0; i < n; ++i) {
+            const double wk = ts.vnx[i] * d.x + ts.vny[i] * d.y + ts.vnz[i] * d.z;
+            if (wk > 0) ts.vden[i] += wk;
+          }
+      }
+    }
+    for (size_t i = 0; i < n; ++i) {
+      float* o = out + size_t(ts.vpix[i]) * C;
+      glm::dvec3 rgb(ts.vrgb[4 * i], ts.vrgb[4 * i + 1], ts.vrgb[4 * i + 2]);
+      if (rs.ao.directions) {
+        const double a = ts.vden[i] > 0 ? ts.vnum[i] / ts.vden[i] : 1.0;
+        rgb *= a;  // final colour = AO × shaded colour (digest §2.4.6)
+        o[5] = float(a);
+      }
+      o[0] = float(rgb.r), o[1] = float(rgb.g), o[2] = float(rgb.b), o[3] = 1.f;  // opaque: alpha ignored
+      o[4] = float(ts.vrgb[4 * i + 3]);
+    }
+    ts.stats.rendered_pixels += n;
+  }
+
+  size_t image_pixel(const TileRect& r, uint32_t p) const {
+    const uint32_t w = r.width();
+    return size_t(r.y0 + p / w) * rs.width + (r.x0 + p % w);
+  }
+
+  // Batches: per batch of directions, its maps, then every requested tile's
+  // depth pass and the batch's terms added to ao_num (resolve() divides).
+  void stream_ao(const std::vector<uint32_t>& tiles) {
+    ao_num.assign(size_t(rs.width) * rs.height, 0.0);
+    tbb::task_arena arena(std::max(1, rs.threads));
+    for (size_t k0 = 0; k0 < ao_dirs.size(); k0 += ao_batch) {
+      const std::vector<glm::dvec3> dirs(ao_dirs.begin() + k0,
+                                         ao_dirs.begin() + std::min(ao_dirs.size(), k0 + ao_batch));
+      const SphereAoMaps b = build_ao(s, colors, rs, dirs);
+      ms_ao_batches += b.ms_build;
+      ao_batch_bytes = std::max(ao_batch_bytes, b.bytes);
+      if (b.bytes > ao_budget_left)
+        throw std::runtime_error("memory budget of " + bytes_str(setup.memory_budget_bytes) + " cannot hold a batch of " +
+                                 std::to_string(dirs.size()) + " AO maps with their translucent lists (" +
+                                 bytes_str(b.bytes) + "); raise --memory-budget or lower ao.map_size");
+      arena.execute([&] {
+        tbb::parallel_for(size_t(0), tiles.size(), [&](size_t q) {
+          const uint32_t t = tiles[q];
+          const TileRect r = grid.rect(t);
+          TileState& ts = states.local();
+          SphereStats keep = ts.stats;  // the counts are the final pass's
+          raster(ts, t, r);
+          ts.stats = keep;
+          gather(ts, r, false);
+          const size_t n = ts.vpix.size();
+          ts.vnum.resize(n);
+          ts.vden.assign(n, 0.0);
+          for (size_t i = 0; i < n; ++i) ts.vnum[i] = ao_num[image_pixel(r, ts.vpix[i])];
+          accumulate_ao(b, n, ts.vpx.data(), ts.vpy.data(), ts.vpz.data(), ts.vnx.data(), ts.vny.data(),
+                        ts.vnz.data(), ts.vnum.data(), ts.vden.data());
+          for (size_t i = 0; i < n; ++i) ao_num[image_pixel(r, ts.vpix[i])] = ts.vnum[i];
+        });
+      });
+    }
   }
 };
 
@@ -472,6 +621,7 @@ void SphereRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* t
   for (uint32_t t : *tiles) work += I.bin_offset[t + 1] - I.bin_offset[t] + 1;
   Progress progress("render", work, I.rs.progress);
   for (TileState& ts : I.states) ts.stats = {};
+  if (I.rs.ao.directions && !I.ao) I.stream_ao(*tiles);
   run_tiles(I.grid, *tiles, threads(), sink, [&](uint32_t t, const TileRect& r) {
     const float* px = I.render_tile(t, r);
     progress.add(I.bin_offset[t + 1] - I.bin_offset[t] + 1);
@@ -496,6 +646,10 @@ void SphereRenderer::add_tile_totals(const std::vector<uint8_t>& other) {
 SphereStats SphereRenderer::stats() const {
   SphereStats s = impl_->setup;
   add_tile_stats(s, impl_->totals);
+  if (impl_->rs.ao.directions && !impl_->ao) {  // batches: built by the frame
+    s.ms_ao_maps = impl_->ms_ao_batches;
+    s.ao_map_bytes = impl_->ao_batch_bytes;
+  }
   s.ms_total = s.ms_setup + impl_->totals.ms_total;
   s.peak_rss_bytes = std::max(impl_->totals.peak_rss_bytes, peak_rss_bytes());
   return s;

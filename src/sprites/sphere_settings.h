@@ -26,6 +26,10 @@ struct SphereAo {
   uint32_t map_size = 1024;
   double bias = -1;         // world units; < 0: 1 % of the smallest radius
   bool impostor_depth = false;  // maps of exact front surfaces instead of centre discs
+  bool alpha_occluders = false; // occluders "alpha": a sphere passes 1 − alpha of the light
+  // Set when the maps cannot all be held at once: each frame builds and
+  // consumes them in batches that fit the memory budget (opaque mode only).
+  bool batches = false;
 };
 
 struct SphereRenderSettings {

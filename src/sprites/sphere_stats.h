@@ -10,8 +10,10 @@ namespace zs {
 struct SphereStats {
   double ms_total = 0, ms_setup = 0;   // setup: visibility and binning
   double ms_visibility = 0, ms_binning = 0, ms_grid = 0;
-  double ms_ao_maps = 0;      // ambient occlusion: building its maps
-  uint64_t ao_map_bytes = 0;
+  double ms_ao_maps = 0;      // ambient occlusion: building its maps (batches: every frame)
+  uint64_t ao_map_bytes = 0;  // the maps held at once (batches: the largest batch)
+  uint64_t ao_batches = 0;    // 0: every map held across frames; else batches per frame
+  uint64_t ao_translucent_fragments = 0;  // occluders "alpha": list entries over every map
   uint64_t spheres = 0, invalid = 0;
   VisibilityStats vis;
   uint64_t bin_entries = 0, tiles = 0, tile_size = 0;

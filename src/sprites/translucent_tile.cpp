@@ -48,9 +48,29 @@ void TranslucentTile::color(size_t p, const FragKey& k, double c[4]) const {
   n = glm::normalize(glm::dvec3(n.x, n.y, -n.z));
   const glm::dvec3 v = view.perspective() ? glm::normalize(glm::dvec3(-P.x, -P.y, P.z)) : glm::dvec3(0, 0, 1);
   const glm::vec4& col = (*f_->colors)[id];
-  const glm::dvec3 rgb = shade(f_->rs->shading, glm::dvec3(col.r, col.g, col.b), n, v);
+  glm::dvec3 rgb = shade(f_->rs->shading, glm::dvec3(col.r, col.g, col.b), n, v);
+  if (f_->ao) rgb *= fragment_ao(p, k);  // colour = AO × shaded colour (digest §2.4.6)
   const double al = alpha(id);
   c[0] = rgb.r * al, c[1] = rgb.g * al, c[2] = rgb.b * al, c[3] = al;
+}
+
+double TranslucentTile::fragment_ao(size_t p, const FragKey& k) const {
+  const View& view = *f_->view;
+  const CameraPlane& cam = f_->cam;
+  const uint32_t id = frag_id(k.code);
+  const double X = double(r_.x0 + p % w_), Y = double(r_.y0 + p / w_);
+  const glm::dvec3 cc = to_camera(view, f_->s->centres[id]);
+  const double t = k.z;
+  const double a = (X - cam.ox) / cam.sx, b = (cam.oy - Y) / cam.sy;
+  const glm::dvec3 P = view.perspective() ? glm::dvec3(a * t, b * t, t) : glm::dvec3(a, b, t);
+  // The outward normal, entry or exit (AO is the light reaching the sphere's
+  // surface from outside), by the opaque renderer's steps: a front surface
+  // gets its AO bit for bit.
+  glm::dvec3 n = (P - cc) / f_->s->radii[id];
+  n = glm::normalize(glm::dvec3(n.x, n.y, -n.z));
+  const glm::dvec3 Pw = view.eye() + P.x * view.right() + P.y * view.up() + P.z * view.forward();
+  const glm::dvec3 Nw = glm::normalize(n.x * view.right() + n.y * view.up() - n.z * view.forward());
+  return ambient_occlusion(*f_->ao, Pw, Nw);
 }
 
 void TranslucentTile::set_gone(size_t p, double z) {
@@ -126,6 +146,7 @@ const float* TranslucentTile::render(const TranslucentFrame& f, const uint32_t* 
   const size_t n = size_t(w_) * h_;
   acc_.assign(n * 4, 0.0);
   zfirst_.assign(n, INFINITY);
+  kfirst_.assign(n, kKeyMax);
   gone_.assign(n, INFINITY);
   now_.assign(n, INFINITY);
   gone_max_.reset(w_, h_);
@@ -204,7 +225,7 @@ void TranslucentTile::sorted() {
       for (uint32_t i = 0; i < c; ++i) {
         double col[4];
         color(p, b[i], col);
-        if (zfirst_[p] == INFINITY) zfirst_[p] = b[i].z;
+        note_first(p, b[i]);
         composite_under(a, col);
         ++S_->composited;
         prev_[p] = b[i];
@@ -230,14 +251,16 @@ void TranslucentTile::sorted() {
 // The composite over the image background; RGBA + Z out.
 void TranslucentTile::finish() {
   const size_t n = size_t(w_) * h_;
-  out_.resize(n * 5);
+  const size_t C = f_->ao ? 6 : 5;
+  out_.resize(n * C);
   const double* bg = f_->rs->background;
   for (size_t p = 0; p < n; ++p) {
-    float* o = &out_[p * 5];
+    float* o = &out_[p * C];
     double* a = &acc_[p * 4];
     if (f_->rs->mode != SphereMode::Weighted) composite_under(a, bg);
     for (int k = 0; k < 4; ++k) o[k] = float(a[k]);
     o[4] = float(zfirst_[p]);
+    if (f_->ao) o[5] = zfirst_[p] == INFINITY ? INFINITY : float(fragment_ao(p, kfirst_[p]));
     if (zfirst_[p] != INFINITY) ++S_->rendered_pixels;
   }
 }

@@ -38,6 +38,7 @@
 #include "raster/raster_target.h"
 #include "raster/sphere_span.h"
 #include "raster/tile_grid.h"
+#include "shadows/sphere_map.h"
 #include "spheres/sphere_set.h"
 #include "sprites/fragment_composite.h"
 #include "sprites/sphere_grid.h"
@@ -57,13 +58,15 @@ struct TranslucentFrame {
   const View* view;
   CameraPlane cam;
   uint64_t kbuf_bytes;  // sorted: the most a thread's k-buffer may hold
+  const SphereAoMaps* ao = nullptr;  // ambient occlusion: every fragment's colour × its AO, and an AO channel
 };
 
 // A thread's scratch, reused from tile to tile (no allocation per fragment).
 class TranslucentTile {
  public:
   // Renders the tile from its bin (grid entries, nearest first) into RGBA +
-  // Z floats per pixel; adds its counts to `stats`.
+  // Z floats per pixel (+ AO with f.ao: the AO at the nearest fragment
+  // composited); adds its counts to `stats`.
   const float* render(const TranslucentFrame& f, const uint32_t* bin, uint64_t count, const TileRect& r,
                       SphereStats& stats);
 
@@ -101,8 +104,14 @@ class TranslucentTile {
 
   // Composites layer fragment k under pixel p (peeling modes); its composite.
   double* composite_layer(size_t p, const FragKey& k);
-  // The fragment's premultiplied colour (shaded as the opaque renderer shades).
+  // The fragment's premultiplied colour (shaded as the opaque renderer
+  // shades; with AO, × the AO at its point with the sphere's outward normal).
   void color(size_t p, const FragKey& k, double c[4]) const;
+  double fragment_ao(size_t p, const FragKey& k) const;
+  // Pixel p composited fragment k: the nearest so far gives Z (and AO).
+  void note_first(size_t p, const FragKey& k) {
+    if (k < kfirst_[p]) kfirst_[p] = k, zfirst_[p] = k.z;
+  }
   double alpha(uint32_t id) const;
   // Pixel p's fragments of the sphere hit by `h` (one or two), in order.
   int fragments(const SphereHit& h, uint32_t id, bool opaque, FragKey out[2]) const;
@@ -118,6 +127,7 @@ class TranslucentTile {
 
   std::vector<double> acc_;     // 4 per pixel: the composite so far, premultiplied
   std::vector<double> zfirst_;  // the nearest fragment composited (Z)
+  std::vector<FragKey> kfirst_;  // ... and its key
   std::vector<double> gone_;    // fragments behind this can never count (-inf: pixel done)
   std::vector<double> now_;     // ... cannot count in this pass
   BlockMax gone_max_, now_max_;

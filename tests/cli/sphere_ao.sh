@@ -5,8 +5,12 @@
 # sphere with close neighbours is darker where they are; the maps' AO is
 # within 0.01 (mean) of the same directions traced exactly, which is close to a
 # Monte Carlo AO; `reference --ao-samples` needs an ao scene; threads and tiles
-# change no bit; bad `ao` blocks fail in one line, naming the file, with no
-# output. Skipped (77) without a python3 that has numpy and OpenImageIO.
+# change no bit; maps built in batches (a small --memory-budget) change no
+# bit; `occluders: "alpha"` lets translucent neighbours pass light (lighter
+# than opaque occluders, within 0.01 of the reference's exact transmittance);
+# AO in the translucent modes (each fragment × its AO) is within 0.01 of the
+# translucent reference; bad `ao` blocks fail in one line, naming the file,
+# with no output. Skipped (77) without a python3 that has numpy and OpenImageIO.
 set -u
 zsweep=$1; src=$2
 py=""
@@ -14,7 +18,7 @@ for c in /usr/bin/python3 python3; do
   if command -v "$c" >/dev/null && "$c" -c 'import numpy, OpenImageIO' 2>/dev/null; then py=$c; break; fi
 done
 [[ -n "$py" ]] || { echo "SKIP: no python3 with numpy and OpenImageIO"; exit 77; }
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+tmp=${KEEP_TMP:-$(mktemp -d)}; [[ -n "${KEEP_TMP:-}" ]] || trap 'rm -rf "$tmp"' EXIT
 fail=0
 printf '0 0 0 1\n' >"$tmp/one.sph"
 # A sphere with six touching neighbours around its equator and one above.
@@ -37,6 +41,20 @@ run "$(scene crowd_plain "$tmp/crowd.sph" '')" -o "$tmp/crowd_plain.exr"
 "$zsweep" reference "$tmp/crowd.json" -o "$tmp/crowd_ref.exr" >/dev/null 2>"$tmp/err" || { echo "FAIL reference: $(cat "$tmp/err")"; fail=1; }
 "$zsweep" reference "$tmp/crowd.json" -o "$tmp/crowd_mc.exr" --ao-samples 1024 >/dev/null 2>"$tmp/err" \
   || { echo "FAIL reference --ao-samples: $(cat "$tmp/err")"; fail=1; }
+# The same neighbours with RGBA colours, translucent (alpha 0.4 and 0.6).
+{ echo "0 0 0 1 0.8 0.8 0.8 1"; for a in 0 60 120 180 240 300; do
+    awk -v a="$a" 'BEGIN { t = a * 3.14159265358979 / 180; printf "%.9f 0 %.9f 0.9 0.5 0.7 0.9 0.4\n", 1.95 * cos(t), 1.95 * sin(t) }'
+  done; echo "0 1.95 0 0.9 0.9 0.5 0.5 0.6"; } >"$tmp/tcrowd.sph"
+for occ in opaque alpha; do
+  for mode in opaque sorted; do
+    f=$(scene "t_${occ}_$mode" "$tmp/tcrowd.sph" "{\"directions\": 66, \"map_size\": 512, \"occluders\": \"$occ\"}" \
+      ", \"render\": {\"mode\": \"$mode\"}")
+    run "$f" -o "$tmp/t_${occ}_$mode.exr" --threads 2
+    "$zsweep" reference "$f" -o "$tmp/tr_${occ}_$mode.exr" >/dev/null 2>"$tmp/err" || { echo "FAIL reference $occ $mode: $(cat "$tmp/err")"; fail=1; }
+  done
+done
+# Batches: 66 maps of 512² need ~70 MB; a 40 MiB budget holds a few at a time.
+run "$tmp/crowd.json" -o "$tmp/crowd_batches.exr" --memory-budget 40 --stats "$tmp/batches.json"
 for t in "1 64" "2 16" "3 33"; do
   set -- $t
   run "$tmp/crowd.json" -o "$tmp/crowd_t$1.exr" --threads "$1" --tile-size "$2"
@@ -45,7 +63,7 @@ done
 import sys, numpy as np, OpenImageIO as oiio
 d = sys.argv[1]
 def read(n):
-    i = oiio.ImageInput.open(f"{d}/{n}.exr")
+    i = oiio.ImageInput.open(f"{sys.argv[1]}/{n}.exr")
     names = list(i.spec().channelnames)
     a = i.read_image("float")
     i.close()
@@ -84,6 +102,32 @@ else:
     m = np.abs(ref[..., 5][on] - mc[..., 5][on])
     if not (m.mean() < 0.06 and ref[..., 5][on].min() < 0.6):
         print("FAIL 66 directions vs Monte Carlo", m.mean()); bad = 1
+_, batches = read("crowd_batches")
+if not np.array_equal(batches.view(np.uint32), crowd.view(np.uint32)):
+    print("FAIL maps in batches change the image"); bad = 1
+import json
+st = json.load(open(f"{sys.argv[1]}/batches.json"))["ao"]
+if not st["batches"] > 1:
+    print("FAIL the small budget did not give batches", st); bad = 1
+# Translucent occluders and AO in translucent modes, against the reference.
+aos = {}
+for occ in ("opaque", "alpha"):
+    for mode in ("opaque", "sorted"):
+        names, img = read(f"t_{occ}_{mode}")
+        _, ref = read(f"tr_{occ}_{mode}")
+        on = np.isfinite(img[..., 5])
+        if names[-1] != "AO" or not np.array_equal(on, np.isfinite(ref[..., 5])):
+            print("FAIL AO coverage", occ, mode, names); bad = 1
+            continue
+        dd = np.abs(img[..., 5][on] - ref[..., 5][on])
+        if not dd.mean() < 0.01:
+            print("FAIL maps vs exact", occ, mode, dd.mean()); bad = 1
+        c = np.abs(img[..., :4] - ref[..., :4])
+        if not c.mean() < 0.01:
+            print("FAIL colour vs reference", occ, mode, c.mean()); bad = 1
+        aos[occ, mode] = img[..., 5][on].mean()
+if aos and not aos["alpha", "opaque"] > aos["opaque", "opaque"] + 0.02:
+    print("FAIL translucent occluders must pass light", aos); bad = 1
 # Colour = AO x the colour without AO (float rounding only).
 err = np.abs(crowd[..., :3][on] - a[on][:, None] * plain[..., :3][on]).max()
 if err > 1e-6:
@@ -104,9 +148,13 @@ bad dirs "$tmp/one.sph" '{"directions": 64}' '' "ao.directions must be 6, 18, 66
 bad size "$tmp/one.sph" '{"map_size": 4}' '' "ao.map_size"
 bad biasneg "$tmp/one.sph" '{"bias": -1}' '' "ao.bias"
 bad depth "$tmp/one.sph" '{"depth": "exact"}' '' "ao.depth"
-bad alpha "$tmp/one.sph" '{"occluders": "alpha"}' '' "not implemented yet"
+bad occ "$tmp/one.sph" '{"occluders": "glass"}' '' 'ao.occluders must be'
 bad key "$tmp/one.sph" '{"radius": 3}' '' "unknown key 'ao.radius'"
-bad mode "$tmp/one.sph" '{"directions": 6}' ', "render": {"mode": "sorted"}' 'ao needs render.mode'
+# Translucent modes need every map at once: a budget too small for them fails.
+f=$(scene bigmaps "$tmp/one.sph" '{"directions": 66, "map_size": 1024}' ', "render": {"mode": "sorted"}')
+"$zsweep" render "$f" -o "$tmp/bad.png" --memory-budget 64 >/dev/null 2>"$tmp/err" && { echo "FAIL sorted AO over budget accepted"; fail=1; }
+grep -q 'needs every AO map in memory' "$tmp/err" || { echo "FAIL sorted AO budget message: $(cat "$tmp/err")"; fail=1; }
+[[ -e "$tmp/bad.png" ]] && { echo "FAIL sorted AO over budget left an output"; fail=1; }
 printf '{"mesh": "%s", "ao": {"directions": 6}}\n' "$src/tests/data/ok/no_final_newline.off" >"$tmp/vol.json"
 "$zsweep" render "$tmp/vol.json" -o "$tmp/bad.png" >/dev/null 2>"$tmp/err" && { echo "FAIL ao in a volume scene accepted"; fail=1; }
 grep -q "'ao' is for sphere scenes" "$tmp/err" || { echo "FAIL volume ao message: $(cat "$tmp/err")"; fail=1; }

@@ -1,6 +1,7 @@
 // Ambient occlusion from orthographic sphere maps (shadows/sphere_map.h): an
 // isolated sphere is unoccluded, a sphere inside a closed shell is dark, the
 // maps converge to exact visibility as they grow, and threads change nothing.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -10,6 +11,7 @@
 
 #include "shadows/ao_directions.h"
 #include "shadows/sphere_map.h"
+#include "shadows/transmittance_lists.h"
 
 namespace zs {
 namespace {
@@ -26,10 +28,16 @@ ShadowSettings ao_settings(double bias, double slope) {
   return s;
 }
 
-std::vector<ShadowMap> maps_for(const Set& set, const std::vector<glm::dvec3>& dirs, uint32_t size, SphereDepth mode,
-                                const ShadowSettings& s, int threads = 2) {
-  std::vector<ShadowMap> m;
-  for (const glm::dvec3& d : dirs) m.push_back(build_sphere_map(set.c, set.r, d, size, mode, s, threads));
+// One map per direction, each built on `threads` threads; with `alpha`,
+// their translucent lists too.
+SphereAoMaps maps_for(const Set& set, const std::vector<glm::dvec3>& dirs, uint32_t size, SphereDepth mode,
+                      const ShadowSettings& s, int threads = 2, const std::vector<float>* alpha = nullptr) {
+  SphereAoMaps m;
+  m.dirs = dirs;
+  if (alpha) m.translucent.resize(dirs.size());
+  for (size_t k = 0; k < dirs.size(); ++k)
+    m.maps.push_back(build_sphere_map(set.c, set.r, dirs[k], size, mode, s, threads, nullptr, alpha,
+                                      alpha ? &m.translucent[k] : nullptr));
   return m;
 }
 
@@ -50,7 +58,7 @@ TEST(SphereAo, IsolatedSphereIsUnoccluded) {
     const auto maps = maps_for(one, dirs, 256, mode,
                                mode == SphereDepth::CentreDisc ? ao_settings(1e-4, 0) : ao_settings(1e-4, 1.5));
     double lo = 1;
-    for (const glm::dvec3& n : spiral(2000)) lo = std::min(lo, ambient_occlusion(maps, dirs, one.c[0] + 0.7 * n, n));
+    for (const glm::dvec3& n : spiral(2000)) lo = std::min(lo, ambient_occlusion(maps, one.c[0] + 0.7 * n, n));
     EXPECT_GE(lo, 0.99) << (mode == SphereDepth::CentreDisc ? "disc" : "impostor");
   }
 }
@@ -64,11 +72,11 @@ TEST(SphereAo, SphereInsideAClosedShellIsDark) {
   const std::vector<glm::dvec3> dirs = ao_directions(66);
   const auto maps = maps_for(set, dirs, 512, SphereDepth::CentreDisc, ao_settings(1e-3, 0));
   double hi = 0;
-  for (const glm::dvec3& n : spiral(500)) hi = std::max(hi, ambient_occlusion(maps, dirs, n, n));
+  for (const glm::dvec3& n : spiral(500)) hi = std::max(hi, ambient_occlusion(maps, n, n));
   EXPECT_LE(hi, 0.05);
   // The shell's own outside is lit from outside.
   double outer = 0;
-  for (const glm::dvec3& d : spiral(50)) outer += ambient_occlusion(maps, dirs, 3.6 * d, d) / 50;
+  for (const glm::dvec3& d : spiral(50)) outer += ambient_occlusion(maps, 3.6 * d, d) / 50;
   EXPECT_GT(outer, 0.5);
 }
 
@@ -84,17 +92,36 @@ bool blocked(const Set& s, size_t own, const glm::dvec3& p, const glm::dvec3& w)
   return false;
 }
 
-TEST(SphereAo, MapsConvergeToExactVisibilityAndThreadsChangeNothing) {
-  std::mt19937 rng(9);
+// Exact transmittance with alpha occluders: Π(1 − α) over the spheres the ray meets.
+double passed(const Set& s, const std::vector<float>& alpha, size_t own, const glm::dvec3& p, const glm::dvec3& w) {
+  double t = 1;
+  for (size_t j = 0; j < s.c.size(); ++j) {
+    if (j == own) continue;
+    const glm::dvec3 oc = p - s.c[j];
+    const double b = glm::dot(oc, w), c = glm::dot(oc, oc) - s.r[j] * s.r[j];
+    const double disc = b * b - c;
+    if (disc >= 0 && -b + std::sqrt(disc) > 0) t *= alpha[j] >= 1.f ? 0.0 : alpha[j] > 0.f ? 1.0 - alpha[j] : 1.0;
+  }
+  return t;
+}
+
+// Forty spheres in a 3³ box, none overlapping (at least 0.05 apart).
+Set scattered(uint32_t seed) {
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(0, 1);
   Set set;
-  while (set.c.size() < 40) {  // non-overlapping, at least 0.05 apart
+  while (set.c.size() < 40) {
     const glm::dvec3 c(3 * U(rng), 3 * U(rng), 3 * U(rng));
     const double r = 0.2 + 0.3 * U(rng);
     bool ok = true;
     for (size_t j = 0; j < set.c.size() && ok; ++j) ok = glm::length(c - set.c[j]) > r + set.r[j] + 0.05;
     if (ok) set.c.push_back(c), set.r.push_back(r);
   }
+  return set;
+}
+
+TEST(SphereAo, MapsConvergeToExactVisibilityAndThreadsChangeNothing) {
+  const Set set = scattered(9);
   const std::vector<glm::dvec3> dirs = ao_directions(18);
   const std::vector<glm::dvec3> sp = spiral(60);
   std::vector<double> exact;
@@ -116,7 +143,7 @@ TEST(SphereAo, MapsConvergeToExactVisibilityAndThreadsChangeNothing) {
     double sum = 0;
     size_t q = 0;
     for (size_t i = 0; i < set.c.size(); ++i)
-      for (const glm::dvec3& n : sp) sum += std::abs(ambient_occlusion(maps, dirs, set.c[i] + set.r[i] * n, n) - exact[q++]);
+      for (const glm::dvec3& n : sp) sum += std::abs(ambient_occlusion(maps, set.c[i] + set.r[i] * n, n) - exact[q++]);
     err.push_back(sum / double(q));
   }
   EXPECT_LT(err[1], err[0]);
@@ -127,7 +154,92 @@ TEST(SphereAo, MapsConvergeToExactVisibilityAndThreadsChangeNothing) {
   const auto three = maps_for(set, dirs, 256, SphereDepth::Impostor, ao_settings(1e-4, 1.5), 3);
   for (size_t k = 0; k < dirs.size(); ++k)
     for (uint32_t y = 0; y < 256; ++y)
-      for (uint32_t x = 0; x < 256; ++x) ASSERT_EQ(one[k].depth(x, y), three[k].depth(x, y));
+      for (uint32_t x = 0; x < 256; ++x) ASSERT_EQ(one.maps[k].depth(x, y), three.maps[k].depth(x, y));
+}
+
+TEST(TransmittanceLists, ProductsOfTheDiscsInFrontOfTheLimit) {
+  TransmittanceLists l;
+  l.reset(100);  // 2×2 tiles
+  std::vector<TranslucentTexel> d = {{5, 2, 3.0, 0.5}, {5, 1, 1.0, 0.25}, {5, 7, 3.0, 0.8}, {6, 0, 2.0, 0.1}};
+  l.set_tile(1, 0, d);
+  l.count_fragments();
+  EXPECT_EQ(l.fragments(), 4u);
+  const uint32_t x = 64 + 5, y = 0;
+  EXPECT_EQ(l.transmittance(x, y, 1.0), 1.f);  // z < lim only: the disc at 1 is not in front of 1
+  EXPECT_EQ(l.transmittance(x, y, 2.0), 0.25f);
+  EXPECT_EQ(l.transmittance(x, y, 3.5), float(0.25 * 0.5 * 0.8));
+  EXPECT_EQ(l.transmittance(64 + 6, 0, 2.5), 0.1f);
+  EXPECT_EQ(l.transmittance(5, 0, 10.0), 1.f);   // another tile: no list
+  EXPECT_EQ(l.transmittance(x, 1, 10.0), 1.f);   // another texel of the tile
+}
+
+TEST(SphereAo, AlphaOccludersConvergeToExactTransmittance) {
+  const Set set = scattered(4);
+  std::vector<float> alpha(set.c.size());
+  for (size_t i = 0; i < alpha.size(); ++i) alpha[i] = i % 5 == 0 ? 1.f : i % 7 == 0 ? 0.f : 0.15f + 0.1f * (i % 6);
+  const std::vector<glm::dvec3> dirs = ao_directions(18);
+  const std::vector<glm::dvec3> sp = spiral(60);
+  std::vector<double> exact;
+  double darkest = 1;
+  for (size_t i = 0; i < set.c.size(); ++i)
+    for (const glm::dvec3& n : sp) {
+      double num = 0, den = 0;
+      for (const glm::dvec3& w : dirs) {
+        const double k = glm::dot(n, w);
+        if (!(k > 0)) continue;
+        den += k;
+        num += k * passed(set, alpha, i, set.c[i] + set.r[i] * n, w);
+      }
+      exact.push_back(den > 0 ? num / den : 1);
+      darkest = std::min(darkest, exact.back());
+    }
+  ASSERT_LT(darkest, 0.7);  // the scene does occlude
+  std::vector<double> err;
+  for (uint32_t size : {64u, 256u, 1024u}) {
+    const auto maps = maps_for(set, dirs, size, SphereDepth::CentreDisc, ao_settings(1e-4, 0), 2, &alpha);
+    double sum = 0;
+    size_t q = 0;
+    for (size_t i = 0; i < set.c.size(); ++i)
+      for (const glm::dvec3& n : sp) sum += std::abs(ambient_occlusion(maps, set.c[i] + set.r[i] * n, n) - exact[q++]);
+    err.push_back(sum / double(q));
+  }
+  EXPECT_LT(err[1], err[0]);
+  EXPECT_LT(err[2], err[1]);
+  EXPECT_LT(err[2], 0.01);
+  // Every alpha 1: no list, and the opaque maps' AO bit for bit.
+  const std::vector<float> ones(set.c.size(), 1.f);
+  const auto a = maps_for(set, dirs, 128, SphereDepth::CentreDisc, ao_settings(1e-4, 0), 1, &ones);
+  const auto o = maps_for(set, dirs, 128, SphereDepth::CentreDisc, ao_settings(1e-4, 0), 1);
+  for (const TransmittanceLists& l : a.translucent) EXPECT_EQ(l.fragments(), 0u);
+  for (size_t i = 0; i < set.c.size(); ++i)
+    for (const glm::dvec3& n : sp)
+      ASSERT_EQ(ambient_occlusion(a, set.c[i] + set.r[i] * n, n), ambient_occlusion(o, set.c[i] + set.r[i] * n, n));
+}
+
+TEST(SphereAo, BatchesOfDirectionsAddTheSameSums) {
+  const Set set = scattered(5);
+  const std::vector<glm::dvec3> dirs = ao_directions(66);
+  const auto all = maps_for(set, dirs, 128, SphereDepth::CentreDisc, ao_settings(1e-4, 0));
+  std::vector<double> px, py, pz, nx, ny, nz;
+  for (size_t i = 0; i < set.c.size(); ++i)
+    for (const glm::dvec3& n : spiral(30)) {
+      const glm::dvec3 p = set.c[i] + set.r[i] * n;
+      px.push_back(p.x), py.push_back(p.y), pz.push_back(p.z), nx.push_back(n.x), ny.push_back(n.y), nz.push_back(n.z);
+    }
+  const size_t n = px.size();
+  std::vector<double> num(n, 0), den(n, 0), bnum(n, 0), bden(n, 0);
+  accumulate_ao(all, n, px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(), num.data(), den.data());
+  for (size_t k0 = 0; k0 < dirs.size(); k0 += 20) {  // batches of 20, 20, 20, 6
+    SphereAoMaps b;
+    for (size_t k = k0; k < std::min(dirs.size(), k0 + 20); ++k) b.dirs.push_back(dirs[k]), b.maps.push_back(all.maps[k]);
+    accumulate_ao(b, n, px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(), bnum.data(), bden.data());
+  }
+  for (size_t i = 0; i < n; ++i) {
+    ASSERT_EQ(num[i], bnum[i]);
+    ASSERT_EQ(den[i], bden[i]);
+    // And the one-point form gives the same AO.
+    ASSERT_EQ(ambient_occlusion(all, {px[i], py[i], pz[i]}, {nx[i], ny[i], nz[i]}), den[i] > 0 ? num[i] / den[i] : 1.0);
+  }
 }
 
 }  // namespace
