@@ -42,9 +42,13 @@ def write_csv(path, rows):
         w.writerows(rows)
 
 
-def replace_block(path, name, lines, heading):
+def replace_block(path, name, lines, heading, source=None):
+    """Replaces (or appends under `heading`) the block marked `name` in the
+    Markdown file `path`; `source`: the command named as its writer
+    (default scripts/NAME)."""
     begin, end = f"<!-- {name}:begin", f"<!-- {name}:end -->"
-    block = "\n".join([f"{begin} (written by scripts/{name}; do not edit by hand) -->"] + lines + [end])
+    source = source or f"scripts/{name}"
+    block = "\n".join([f"{begin} (written by {source}; do not edit by hand) -->"] + lines + [end])
     text = open(path).read() if os.path.exists(path) else "# Benchmarks\n\n"
     if begin in text and end in text:
         text = text[:text.index(begin)] + block + text[text.index(end) + len(end):]

@@ -45,7 +45,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_spheres as bs  # noqa: E402
 import bench_spheres_ao_ext as ext  # noqa: E402
-from bench_common import write_csv  # noqa: E402
+from bench_common import replace_block, write_csv  # noqa: E402
 
 ROOT = bs.ROOT
 PDB = "/usr/share/pymol/data/tut/1hpv.pdb"
@@ -532,16 +532,8 @@ def write_doc(files, lines):
     os.makedirs(os.path.join(ROOT, "docs", "bench"), exist_ok=True)
     for f in files:
         shutil.copy(f, os.path.join(ROOT, "docs", "bench", os.path.basename(f)))
-    path = os.path.join(ROOT, "docs", "spheres-bench.md")
-    begin, end = f"<!-- {DOC_NAME}:begin", f"<!-- {DOC_NAME}:end -->"
-    block = "\n".join([f"{begin} (written by scripts/bench-spheres --ao; do not edit by hand) -->"] + lines + [end])
-    text = open(path).read()
-    if begin in text and end in text:
-        text = text[:text.index(begin)] + block + text[text.index(end) + len(end):]
-    else:
-        text = text.rstrip() + f"\n\n{DOC_HEADING}\n\n" + block + "\n"
-    with open(path, "w") as f:
-        f.write(text)
+    replace_block(os.path.join(ROOT, "docs", "spheres-bench.md"), DOC_NAME, lines, DOC_HEADING,
+                  "scripts/bench-spheres --ao")
 
 
 def replot(a):

@@ -439,6 +439,19 @@ def versus_doc(a, c, tables, f):
 
 # ---------------------------------------------------------------- plots
 
+def save_bars(fig, ax, ylabel, path):
+    """A bar chart's log axis, grid and legend, saved to `path` (returned)."""
+    import matplotlib.pyplot as plt
+    ax.set_yscale("log")
+    ax.set_ylabel(ylabel, fontsize=8)
+    ax.grid(True, axis="y", which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return path
+
+
 def plots(results, tables, c, a, outdir):
     import matplotlib
     matplotlib.use("Agg")
@@ -534,14 +547,7 @@ def plots(results, tables, c, a, outdir):
         ax.bar([j + i * wbar for j in range(len(sets))], ys, wbar, label=f"{d} directions", color=colours[d])
     ax.set_xticks([j + 0.4 - wbar / 2 for j in range(len(sets))])
     ax.set_xticklabels([f"{r['set'].upper()}\n{r['spheres']:,}" for r in sets], fontsize=8)
-    ax.set_yscale("log")
-    ax.set_ylabel(f"ms to build the maps ({c['tmap']}², 1 thread)", fontsize=8)
-    ax.grid(True, axis="y", which="both", alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    files.append(os.path.join(outdir, "ao-table7.png"))
-    fig.savefig(files[-1])
-    plt.close(fig)
+    files.append(save_bars(fig, ax, f"ms to build the maps ({c['tmap']}², 1 thread)", os.path.join(outdir, "ao-table7.png")))
     t6 = tables.get("ao-table6.csv") or []
     if t6:
         fig, ax = plt.subplots(figsize=(6, 3.4), dpi=80)
@@ -550,14 +556,7 @@ def plots(results, tables, c, a, outdir):
             ax.bar(xs + i * 0.27, [t.get(k) if bs.isnum(t.get(k)) else float("nan") for t in t6], 0.27, label=lab)
         ax.set_xticks(xs + 0.27)
         ax.set_xticklabels([f"{t['set'].upper()}\n{int(t['spheres']):,}" for t in t6], fontsize=8)
-        ax.set_yscale("log")
-        ax.set_ylabel(f"ms, 1 thread, {int(t6[0]['size'])}²", fontsize=8)
-        ax.grid(True, axis="y", which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        files.append(os.path.join(outdir, "ao-table6.png"))
-        fig.savefig(files[-1])
-        plt.close(fig)
+        files.append(save_bars(fig, ax, f"ms, 1 thread, {int(t6[0]['size'])}²", os.path.join(outdir, "ao-table6.png")))
     return files
 
 

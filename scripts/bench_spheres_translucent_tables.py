@@ -10,7 +10,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_spheres as bs  # noqa: E402
-from bench_common import cpu_name, cpu_vector_isa  # noqa: E402
+from bench_common import cpu_name, cpu_vector_isa, replace_block  # noqa: E402
 from bench_spheres_translucent import FLOOR, ROOT, TABLE5  # noqa: E402
 
 DOC_NAME = "bench-spheres-translucent"
@@ -259,17 +259,8 @@ def plots(summary, mode_rows, err_rows, vtk_rows, emb_rows, outdir):
 
 
 def write_doc_block(lines):
-    path = os.path.join(ROOT, "docs", "spheres-bench.md")
-    begin, end = f"<!-- {DOC_NAME}:begin", f"<!-- {DOC_NAME}:end -->"
-    block = "\n".join([f"{begin} (written by scripts/bench-spheres --translucent; do not edit by hand) -->"]
-                      + lines + [end])
-    text = open(path).read()
-    if begin in text and end in text:
-        text = text[:text.index(begin)] + block + text[text.index(end) + len(end):]
-    else:
-        text = text.rstrip() + f"\n\n{DOC_HEADING}\n\n" + block + "\n"
-    with open(path, "w") as f:
-        f.write(text)
+    replace_block(os.path.join(ROOT, "docs", "spheres-bench.md"), DOC_NAME, lines, DOC_HEADING,
+                  "scripts/bench-spheres --translucent")
 
 
 def all_cols(rows):

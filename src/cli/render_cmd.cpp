@@ -23,6 +23,7 @@
 #include "view/camera.h"
 #include "scene/scene.h"
 #include "spheres/sphere_colors.h"
+#include "sprites/sphere_ao.h"
 #include "sprites/sphere_renderer.h"
 #include "util/atomic_file.h"
 #include "util/bytes_str.h"

@@ -381,8 +381,58 @@ SphereReferenceImage render_sphere_reference(const SphereSet& spheres, const std
 }
 
 namespace {
+
+// AO at P (world) with unit outward normal N on sphere `id`, by exact rays:
+// over spec.dirs with the renderer's weights (samples 0), else a
+// cosine-weighted Monte Carlo estimate (Malley) from a fixed stream `seed`.
 double traced_ao(const SphereReference& ref, const std::vector<glm::vec4>& colors, const SphereAoSpec& spec,
-                 const glm::dvec3& P, const glm::dvec3& N, uint32_t id, uint64_t seed);
+                 const glm::dvec3& P, const glm::dvec3& N, uint32_t id, uint64_t seed) {
+  thread_local std::vector<SphereCrossing> xs;
+  // V(P, w): no other sphere crosses the ray from P towards w (P's own
+  // sphere is left behind: it is convex and N·w > 0). Alpha occluders:
+  // Π(1 − α) over the spheres it crosses, each once (entered ahead of P, or
+  // left ahead of P when P is inside it).
+  auto open = [&](const glm::dvec3& w) {
+    ref.ray_crossings(P, w, &xs);
+    double pass = 1;
+    for (size_t q = 0; q < xs.size(); ++q) {
+      const SphereCrossing& x = xs[q];
+      if (x.id == id || !(x.depth > 0)) continue;
+      if (!spec.alpha_occluders) return 0.0;
+      bool seen = false;
+      for (size_t e = 0; e < q && !seen; ++e) seen = xs[e].id == x.id && xs[e].depth > 0;
+      if (seen) continue;
+      const float a = colors[x.id].a;
+      pass *= a >= 1.f ? 0.0 : a > 0.f ? 1.0 - double(a) : 1.0;
+    }
+    return pass;
+  };
+  if (spec.samples == 0) {  // the renderer's directions, traced exactly
+    double num = 0, den = 0;
+    for (const glm::dvec3& w : spec.dirs) {
+      const double c = glm::dot(N, w);
+      if (!(c > 0)) continue;
+      den += c;
+      num += c * open(w);
+    }
+    return den > 0 ? num / den : 1.0;
+  }
+  uint64_t st = seed * 0x9E3779B97F4A7C15ull + 1;
+  auto next = [&] {
+    st ^= st << 13, st ^= st >> 7, st ^= st << 17;
+    return double(st >> 11) * 0x1p-53;
+  };
+  const glm::dvec3 t = glm::normalize(glm::cross(N, std::abs(N.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 b = glm::cross(N, t);
+  double hits = 0;
+  for (uint32_t q = 0; q < spec.samples; ++q) {
+    const double r = std::sqrt(next()), phi = 2 * M_PI * next();
+    const double x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0, 1 - r * r));
+    hits += open(glm::normalize(x * t + y * b + z * N));
+  }
+  return hits / spec.samples;
+}
+
 }  // namespace
 
 SphereReferenceImage render_sphere_reference_translucent(const SphereSet& spheres,
@@ -443,60 +493,6 @@ SphereReferenceImage render_sphere_reference_translucent(const SphereSet& sphere
 
 namespace zs {
 
-namespace {
-
-// AO at P (world) with unit outward normal N on sphere `id`, by exact rays:
-// over spec.dirs with the renderer's weights (samples 0), else a
-// cosine-weighted Monte Carlo estimate (Malley) from a fixed stream `seed`.
-double traced_ao(const SphereReference& ref, const std::vector<glm::vec4>& colors, const SphereAoSpec& spec,
-                 const glm::dvec3& P, const glm::dvec3& N, uint32_t id, uint64_t seed) {
-  thread_local std::vector<SphereCrossing> xs;
-  // V(P, w): no other sphere crosses the ray from P towards w (P's own
-  // sphere is left behind: it is convex and N·w > 0). Alpha occluders:
-  // Π(1 − α) over the spheres it crosses, each once (entered ahead of P, or
-  // left ahead of P when P is inside it).
-  auto open = [&](const glm::dvec3& w) {
-    ref.ray_crossings(P, w, &xs);
-    double pass = 1;
-    for (size_t q = 0; q < xs.size(); ++q) {
-      const SphereCrossing& x = xs[q];
-      if (x.id == id || !(x.depth > 0)) continue;
-      if (!spec.alpha_occluders) return 0.0;
-      bool seen = false;
-      for (size_t e = 0; e < q && !seen; ++e) seen = xs[e].id == x.id && xs[e].depth > 0;
-      if (seen) continue;
-      const float a = colors[x.id].a;
-      pass *= a >= 1.f ? 0.0 : a > 0.f ? 1.0 - double(a) : 1.0;
-    }
-    return pass;
-  };
-  if (spec.samples == 0) {  // the renderer's directions, traced exactly
-    double num = 0, den = 0;
-    for (const glm::dvec3& w : spec.dirs) {
-      const double c = glm::dot(N, w);
-      if (!(c > 0)) continue;
-      den += c;
-      num += c * open(w);
-    }
-    return den > 0 ? num / den : 1.0;
-  }
-  uint64_t st = seed * 0x9E3779B97F4A7C15ull + 1;
-  auto next = [&] {
-    st ^= st << 13, st ^= st >> 7, st ^= st << 17;
-    return double(st >> 11) * 0x1p-53;
-  };
-  const glm::dvec3 t = glm::normalize(glm::cross(N, std::abs(N.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
-  const glm::dvec3 b = glm::cross(N, t);
-  double hits = 0;
-  for (uint32_t q = 0; q < spec.samples; ++q) {
-    const double r = std::sqrt(next()), phi = 2 * M_PI * next();
-    const double x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0, 1 - r * r));
-    hits += open(glm::normalize(x * t + y * b + z * N));
-  }
-  return hits / spec.samples;
-}
-
-}  // namespace
 
 SphereReferenceImage render_sphere_reference_ao(const SphereSet& spheres, const std::vector<glm::vec4>& colors,
                                                 const Shading& shading, const View& view, const double background[4],

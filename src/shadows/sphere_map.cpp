@@ -281,6 +281,9 @@ SphereAoMaps build_sphere_ao_maps(const std::vector<glm::dvec3>& centres, const 
   return out;
 }
 
+// N·ω, in glm::dot's order: the weight accumulate_ao and ao_weights add.
+inline double ao_weight(double nx, double ny, double nz, const glm::dvec3& d) { return nx * d.x + ny * d.y + nz * d.z; }
+
 void accumulate_ao(const SphereAoMaps& ao, size_t n, const double* px, const double* py, const double* pz,
                    const double* nx, const double* ny, const double* nz, double* num, double* den) {
   // By chunks of points; per direction, the points it faces are gathered and
@@ -296,7 +299,7 @@ void accumulate_ao(const SphereAoMaps& ao, size_t n, const double* px, const dou
       size_t c = 0;
       for (size_t i = 0; i < m; ++i) {
         const size_t j = i0 + i;
-        const double w = nx[j] * d.x + ny[j] * d.y + nz[j] * d.z;  // glm::dot's order
+        const double w = ao_weight(nx[j], ny[j], nz[j], d);
         if (!(w > 0)) continue;
         qx[c] = px[j], qy[c] = py[j], qz[c] = pz[j], mx[c] = nx[j], my[c] = ny[j], mz[c] = nz[j];
         wk[c] = w, idx[c] = uint32_t(j);
@@ -319,6 +322,15 @@ void accumulate_ao(const SphereAoMaps& ao, size_t n, const double* px, const dou
       }
     }
   }
+}
+
+void ao_weights(const std::vector<glm::dvec3>& dirs, size_t n, const double* nx, const double* ny, const double* nz,
+                double* den) {
+  for (const glm::dvec3& d : dirs)
+    for (size_t i = 0; i < n; ++i) {
+      const double w = ao_weight(nx[i], ny[i], nz[i], d);
+      if (w > 0) den[i] += w;
+    }
 }
 
 double ambient_occlusion(const SphereAoMaps& ao, const glm::dvec3& p, const glm::dvec3& n) {

@@ -73,5 +73,8 @@ double ambient_occlusion(const SphereAoMaps& ao, const glm::dvec3& p, const glm:
 // same terms the whole set would.
 void accumulate_ao(const SphereAoMaps& ao, size_t n, const double* px, const double* py, const double* pz,
                    const double* nx, const double* ny, const double* nz, double* num, double* den);
+// The denominators alone (no map read), the same sums accumulate_ao adds.
+void ao_weights(const std::vector<glm::dvec3>& dirs, size_t n, const double* nx, const double* ny, const double* nz,
+                double* den);
 
 }  // namespace zs

@@ -19,6 +19,7 @@
 #include "shadows/ao_directions.h"
 #include "shadows/sphere_map.h"
 #include "spheres/sphere_shading.h"
+#include "sprites/sphere_ao.h"
 #include "sprites/translucent_tile.h"
 #include "util/bytes_str.h"
 #include "util/memory.h"
@@ -53,7 +54,8 @@ struct alignas(128) TileState {
   // The tile's visible pixels for shading and AO: pixel index, colour before
   // AO, world position and normal, and the AO sums.
   std::vector<uint32_t> vpix;
-  std::vector<double> vrgb, vpx, vpy, vpz, vnx, vny, vnz, vnum, vden;
+  std::vector<double> vrgb;  // colour and depth, 4 per visible pixel
+  AoPoints aop;
   SphereStats stats;       // this thread's per-tile counts
   std::unique_ptr<TranslucentTile> translucent;  // the translucent modes' scratch
 };
@@ -64,49 +66,6 @@ constexpr uint64_t kTilePixelBytes = 12;  // depth and id; plus 4 per output cha
 }  // namespace
 
 uint32_t sphere_channels(const SphereRenderSettings& rs) { return rs.ao.directions ? 6 : 5; }
-
-uint64_t sphere_ao_map_bytes_bound(const SphereRenderSettings& rs) {
-  const uint64_t D = rs.ao.map_size, tiles = (D + kMapTile - 1) / kMapTile, blocks = (D + 7) / 8;
-  return D * D * 4 + blocks * blocks * 8 + tiles * tiles * 4;  // every tile stored, its block ranges, its slots
-}
-
-uint64_t sphere_ao_bytes_bound(const SphereRenderSettings& rs) {
-  return uint64_t(rs.ao.directions) * sphere_ao_map_bytes_bound(rs);
-}
-
-namespace {
-
-// The maps of directions `dirs` (bias defaults resolved: 1 % of the smallest
-// radius; discs cannot shadow their own sphere, the bias only absorbs
-// rounding; impostor depth needs the slope bias).
-SphereAoMaps build_ao(const SphereSet& s, const std::vector<glm::vec4>& colors, const SphereRenderSettings& rs,
-                      const std::vector<glm::dvec3>& dirs) {
-  double rmin = INFINITY;
-  for (double r : s.radii)
-    if (r > 0 && std::isfinite(r)) rmin = std::min(rmin, r);
-  ShadowSettings ss;
-  ss.map_size = rs.ao.map_size;
-  ss.bias = rs.ao.bias >= 0 ? rs.ao.bias : (std::isfinite(rmin) ? 0.01 * rmin : 0.0);
-  ss.slope_bias = rs.ao.impostor_depth ? 1.5 : 0.0;
-  std::vector<float> alpha;
-  if (rs.ao.alpha_occluders) {
-    alpha.resize(colors.size());
-    for (size_t i = 0; i < colors.size(); ++i) alpha[i] = colors[i].a;
-  }
-  return build_sphere_ao_maps(s.centres, s.radii, dirs, rs.ao.map_size,
-                              rs.ao.impostor_depth ? SphereDepth::Impostor : SphereDepth::CentreDisc, ss,
-                              std::max(1, rs.threads), rs.ao.alpha_occluders ? &alpha : nullptr);
-}
-
-}  // namespace
-
-std::shared_ptr<const SphereAoMaps> sphere_ao_maps(const SphereSet& s, const std::vector<glm::vec4>& colors,
-                                                   const SphereRenderSettings& rs, uint64_t available) {
-  if (sphere_ao_bytes_bound(rs) > available) return nullptr;
-  auto maps = std::make_shared<const SphereAoMaps>(build_ao(s, colors, rs, ao_directions(rs.ao.directions)));
-  if (maps->bytes > available) return nullptr;  // alpha occluders' lists: known only once built
-  return maps;
-}
 
 uint64_t sphere_set_bytes(const SphereSet& s) {
   return s.centres.size() * sizeof(glm::dvec3) + s.radii.size() * 8 + s.scalars.size() * 8 +
@@ -179,27 +138,12 @@ struct SphereRenderer::Impl {
         shared += ao->bytes;
         check(shared);
       } else {
-        const std::string need = std::to_string(rs.ao.directions) + " AO maps of " + std::to_string(rs.ao.map_size) +
-                                 "² (up to " + bytes_str(sphere_ao_bytes_bound(rs)) + ")";
-        if (rs.mode != SphereMode::Opaque)
-          throw std::runtime_error(std::string("ao in render.mode \"") + to_string(rs.mode) +
-                                   "\" needs every AO map in memory, and the budget of " + bytes_str(budget) +
-                                   " cannot hold " + need + "; raise --memory-budget or lower ao.map_size or ao.directions");
-        // Batches (the seed's several passes when the maps outnumber the
-        // texture units, §2.4.6): per frame, the image's AO sums, and as many
-        // maps at once as the rest of the budget holds (alpha occluders: at
-        // most one per thread, their lists checked as they are built).
-        const uint64_t sums = uint64_t(rs.width) * rs.height * sizeof(double);
-        const uint64_t per_map = sphere_ao_map_bytes_bound(rs);
-        if (shared + sums + per_map > budget)
-          throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold even one of " + need +
-                                   " with the image's AO sums (" + bytes_str(sums) +
-                                   "); raise --memory-budget or lower ao.map_size");
-        ao_batch = uint32_t(std::min<uint64_t>(rs.ao.directions, (budget - shared - sums) / per_map));
-        if (rs.ao.alpha_occluders) ao_batch = std::min<uint32_t>(ao_batch, uint32_t(threads));
+        // Batches: the image's sums and ao_batch maps at a time (sphere_ao.h).
+        const uint64_t sums = sphere_ao_sums_bytes(rs);
+        ao_batch = sphere_ao_batch_size(rs, budget, shared, threads);
         S.ao_batches = (rs.ao.directions + ao_batch - 1) / ao_batch;
-        shared += sums + uint64_t(ao_batch) * per_map;
-        ao_budget_left = budget - shared + uint64_t(ao_batch) * per_map;  // what a batch may really take
+        ao_budget_left = budget - shared - sums;  // what a batch may really take
+        shared += sums + uint64_t(ao_batch) * sphere_ao_map_bytes_bound(rs);
       }
     }
 
@@ -468,7 +412,7 @@ struct SphereRenderer::Impl {
   void gather(TileState& ts, const TileRect& r, bool colour) {
     const uint32_t w = r.width(), h = r.height();
     ts.vpix.clear(), ts.vrgb.clear();
-    ts.vpx.clear(), ts.vpy.clear(), ts.vpz.clear(), ts.vnx.clear(), ts.vny.clear(), ts.vnz.clear();
+    ts.aop.clear();
     // Neighbouring pixels mostly show the same sphere: its set-up is kept
     // while the id repeats (the same values, so the same image).
     uint32_t last = kNoId;
@@ -503,11 +447,9 @@ struct SphereRenderer::Impl {
           ts.vrgb.insert(ts.vrgb.end(), {rgb.r, rgb.g, rgb.b, hit.t});
         }
         if (rs.ao.directions) {
-          // World point and normal (camera space x right, y up, z forward).
-          const glm::dvec3 Pw = view.eye() + P.x * view.right() + P.y * view.up() + P.z * view.forward();
-          const glm::dvec3 Nw = glm::normalize(n.x * view.right() + n.y * view.up() - n.z * view.forward());
-          ts.vpx.push_back(Pw.x), ts.vpy.push_back(Pw.y), ts.vpz.push_back(Pw.z);
-          ts.vnx.push_back(Nw.x), ts.vny.push_back(Nw.y), ts.vnz.push_back(Nw.z);
+          glm::dvec3 Pw, Nw;
+          ao_world(view, P, n, &Pw, &Nw);
+          ts.aop.add(size_t(r.y0 + y) * rs.width + (r.x0 + x), Pw, Nw);
         }
       }
   }
@@ -528,28 +470,12 @@ struct SphereRenderer::Impl {
     }
     gather(ts, r, true);
     const size_t n = ts.vpix.size();
-    if (rs.ao.directions) {
-      ts.vnum.assign(n, 0.0);
-      ts.vden.assign(n, 0.0);
-      if (ao) {
-        accumulate_ao(*ao, n, ts.vpx.data(), ts.vpy.data(), ts.vpz.data(), ts.vnx.data(), ts.vny.data(),
-                      ts.vnz.data(), ts.vnum.data(), ts.vden.data());
-      } else {
-        // Batches: the numerators summed over every batch; the weights again
-        // here, in the same direction order, so the same sums.
-        for (size_t i = 0; i < n; ++i) ts.vnum[i] = ao_num[image_pixel(r, ts.vpix[i])];
-        for (const glm::dvec3& d : ao_dirs)
-          for (size_t i = 0; i < n; ++i) {
-            const double wk = ts.vnx[i] * d.x + ts.vny[i] * d.y + ts.vnz[i] * d.z;
-            if (wk > 0) ts.vden[i] += wk;
-          }
-      }
-    }
+    if (rs.ao.directions) ao_sums(ts.aop, ao.get(), ao_dirs, ao_num);
     for (size_t i = 0; i < n; ++i) {
       float* o = out + size_t(ts.vpix[i]) * C;
       glm::dvec3 rgb(ts.vrgb[4 * i], ts.vrgb[4 * i + 1], ts.vrgb[4 * i + 2]);
       if (rs.ao.directions) {
-        const double a = ts.vden[i] > 0 ? ts.vnum[i] / ts.vden[i] : 1.0;
+        const double a = ts.aop.ao(i);
         rgb *= a;  // final colour = AO × shaded colour (digest §2.4.6)
         o[5] = float(a);
       }
@@ -557,11 +483,6 @@ struct SphereRenderer::Impl {
       o[4] = float(ts.vrgb[4 * i + 3]);
     }
     ts.stats.rendered_pixels += n;
-  }
-
-  size_t image_pixel(const TileRect& r, uint32_t p) const {
-    const uint32_t w = r.width();
-    return size_t(r.y0 + p / w) * rs.width + (r.x0 + p % w);
   }
 
   // Batches: per batch of directions, its maps, then every requested tile's
@@ -572,7 +493,7 @@ struct SphereRenderer::Impl {
     for (size_t k0 = 0; k0 < ao_dirs.size(); k0 += ao_batch) {
       const std::vector<glm::dvec3> dirs(ao_dirs.begin() + k0,
                                          ao_dirs.begin() + std::min(ao_dirs.size(), k0 + ao_batch));
-      const SphereAoMaps b = build_ao(s, colors, rs, dirs);
+      const SphereAoMaps b = build_sphere_ao(s, colors, rs, dirs);
       ms_ao_batches += b.ms_build;
       ao_batch_bytes = std::max(ao_batch_bytes, b.bytes);
       if (b.bytes > ao_budget_left)
@@ -588,13 +509,7 @@ struct SphereRenderer::Impl {
           raster(ts, t, r);
           ts.stats = keep;
           gather(ts, r, false);
-          const size_t n = ts.vpix.size();
-          ts.vnum.resize(n);
-          ts.vden.assign(n, 0.0);
-          for (size_t i = 0; i < n; ++i) ts.vnum[i] = ao_num[image_pixel(r, ts.vpix[i])];
-          accumulate_ao(b, n, ts.vpx.data(), ts.vpy.data(), ts.vpz.data(), ts.vnx.data(), ts.vny.data(),
-                        ts.vnz.data(), ts.vnum.data(), ts.vden.data());
-          for (size_t i = 0; i < n; ++i) ao_num[image_pixel(r, ts.vpix[i])] = ts.vnum[i];
+          add_ao_batch(ts.aop, b, ao_num);
         });
       });
     }

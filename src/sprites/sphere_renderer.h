@@ -65,16 +65,5 @@ class SphereRenderer : public TiledRenderer {
 uint64_t sphere_set_bytes(const SphereSet& s);
 // Channels of a tile: R, G, B, A, Z, then AO when ambient occlusion is on.
 uint32_t sphere_channels(const SphereRenderSettings& rs);
-// The AO maps of settings.ao for a set (bias defaults resolved), or null
-// when they cannot all be held in `available` bytes (the renderer then
-// builds them in batches each frame). `colors`: the spheres' colours, whose
-// alpha the "alpha" occluders use. Opaque occluders are checked against
-// their bound before any is built; alpha ones (their lists have no bound)
-// as they are built.
-std::shared_ptr<const SphereAoMaps> sphere_ao_maps(const SphereSet& s, const std::vector<glm::vec4>& colors,
-                                                   const SphereRenderSettings& rs, uint64_t available);
-// The most memory one AO map's depths take, and all of them.
-uint64_t sphere_ao_map_bytes_bound(const SphereRenderSettings& rs);
-uint64_t sphere_ao_bytes_bound(const SphereRenderSettings& rs);
 
 }  // namespace zs

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "spheres/sphere_shading.h"
+#include "sprites/sphere_ao.h"
 #include "sprites/sphere_tile_scan.h"
 #include "sprites/sphere_visibility.h"
 
@@ -68,8 +69,8 @@ double TranslucentTile::fragment_ao(size_t p, const FragKey& k) const {
   // gets its AO bit for bit.
   glm::dvec3 n = (P - cc) / f_->s->radii[id];
   n = glm::normalize(glm::dvec3(n.x, n.y, -n.z));
-  const glm::dvec3 Pw = view.eye() + P.x * view.right() + P.y * view.up() + P.z * view.forward();
-  const glm::dvec3 Nw = glm::normalize(n.x * view.right() + n.y * view.up() - n.z * view.forward());
+  glm::dvec3 Pw, Nw;
+  ao_world(view, P, n, &Pw, &Nw);
   return ambient_occlusion(*f_->ao, Pw, Nw);
 }
 

@@ -80,18 +80,6 @@ TEST(SphereAo, SphereInsideAClosedShellIsDark) {
   EXPECT_GT(outer, 0.5);
 }
 
-// Exact visibility: the ray from p towards w meets another sphere.
-bool blocked(const Set& s, size_t own, const glm::dvec3& p, const glm::dvec3& w) {
-  for (size_t j = 0; j < s.c.size(); ++j) {
-    if (j == own) continue;
-    const glm::dvec3 oc = p - s.c[j];
-    const double b = glm::dot(oc, w), c = glm::dot(oc, oc) - s.r[j] * s.r[j];
-    const double disc = b * b - c;
-    if (disc >= 0 && -b + std::sqrt(disc) > 0) return true;
-  }
-  return false;
-}
-
 // Exact transmittance with alpha occluders: Π(1 − α) over the spheres the ray meets.
 double passed(const Set& s, const std::vector<float>& alpha, size_t own, const glm::dvec3& p, const glm::dvec3& w) {
   double t = 1;
@@ -120,32 +108,46 @@ Set scattered(uint32_t seed) {
   return set;
 }
 
-TEST(SphereAo, MapsConvergeToExactVisibilityAndThreadsChangeNothing) {
-  const Set set = scattered(9);
-  const std::vector<glm::dvec3> dirs = ao_directions(18);
-  const std::vector<glm::dvec3> sp = spiral(60);
+// Exact AO at sp's points on every sphere of the set (alpha occluders;
+// all alpha 1: exact visibility), point by point.
+std::vector<double> exact_ao(const Set& set, const std::vector<float>& alpha, const std::vector<glm::dvec3>& dirs,
+                             const std::vector<glm::dvec3>& sp) {
   std::vector<double> exact;
   for (size_t i = 0; i < set.c.size(); ++i)
     for (const glm::dvec3& n : sp) {
-      const glm::dvec3 p = set.c[i] + set.r[i] * n;
       double num = 0, den = 0;
       for (const glm::dvec3& w : dirs) {
         const double k = glm::dot(n, w);
         if (!(k > 0)) continue;
         den += k;
-        num += blocked(set, i, p, w) ? 0 : k;
+        num += k * passed(set, alpha, i, set.c[i] + set.r[i] * n, w);
       }
       exact.push_back(den > 0 ? num / den : 1);
     }
+  return exact;
+}
+
+// The maps' mean |AO − exact| at those points for maps of 64², 256², 1024².
+std::vector<double> map_errors(const Set& set, const std::vector<glm::dvec3>& dirs, const std::vector<glm::dvec3>& sp,
+                               const std::vector<double>& exact, const std::vector<float>* alpha) {
   std::vector<double> err;
   for (uint32_t size : {64u, 256u, 1024u}) {
-    const auto maps = maps_for(set, dirs, size, SphereDepth::CentreDisc, ao_settings(1e-4, 0));
+    const auto maps = maps_for(set, dirs, size, SphereDepth::CentreDisc, ao_settings(1e-4, 0), 2, alpha);
     double sum = 0;
     size_t q = 0;
     for (size_t i = 0; i < set.c.size(); ++i)
       for (const glm::dvec3& n : sp) sum += std::abs(ambient_occlusion(maps, set.c[i] + set.r[i] * n, n) - exact[q++]);
     err.push_back(sum / double(q));
   }
+  return err;
+}
+
+TEST(SphereAo, MapsConvergeToExactVisibilityAndThreadsChangeNothing) {
+  const Set set = scattered(9);
+  const std::vector<glm::dvec3> dirs = ao_directions(18);
+  const std::vector<glm::dvec3> sp = spiral(60);
+  const std::vector<double> err =
+      map_errors(set, dirs, sp, exact_ao(set, std::vector<float>(set.c.size(), 1.f), dirs, sp), nullptr);
   EXPECT_LT(err[1], err[0]);
   EXPECT_LT(err[2], err[1]);
   EXPECT_LT(err[2], 0.01);
@@ -179,30 +181,9 @@ TEST(SphereAo, AlphaOccludersConvergeToExactTransmittance) {
   for (size_t i = 0; i < alpha.size(); ++i) alpha[i] = i % 5 == 0 ? 1.f : i % 7 == 0 ? 0.f : 0.15f + 0.1f * (i % 6);
   const std::vector<glm::dvec3> dirs = ao_directions(18);
   const std::vector<glm::dvec3> sp = spiral(60);
-  std::vector<double> exact;
-  double darkest = 1;
-  for (size_t i = 0; i < set.c.size(); ++i)
-    for (const glm::dvec3& n : sp) {
-      double num = 0, den = 0;
-      for (const glm::dvec3& w : dirs) {
-        const double k = glm::dot(n, w);
-        if (!(k > 0)) continue;
-        den += k;
-        num += k * passed(set, alpha, i, set.c[i] + set.r[i] * n, w);
-      }
-      exact.push_back(den > 0 ? num / den : 1);
-      darkest = std::min(darkest, exact.back());
-    }
-  ASSERT_LT(darkest, 0.7);  // the scene does occlude
-  std::vector<double> err;
-  for (uint32_t size : {64u, 256u, 1024u}) {
-    const auto maps = maps_for(set, dirs, size, SphereDepth::CentreDisc, ao_settings(1e-4, 0), 2, &alpha);
-    double sum = 0;
-    size_t q = 0;
-    for (size_t i = 0; i < set.c.size(); ++i)
-      for (const glm::dvec3& n : sp) sum += std::abs(ambient_occlusion(maps, set.c[i] + set.r[i] * n, n) - exact[q++]);
-    err.push_back(sum / double(q));
-  }
+  const std::vector<double> exact = exact_ao(set, alpha, dirs, sp);
+  ASSERT_LT(*std::min_element(exact.begin(), exact.end()), 0.7);  // the scene does occlude
+  const std::vector<double> err = map_errors(set, dirs, sp, exact, &alpha);
   EXPECT_LT(err[1], err[0]);
   EXPECT_LT(err[2], err[1]);
   EXPECT_LT(err[2], 0.01);
