@@ -1,8 +1,58 @@
 """What the benchmark scripts share: the machine's name, the CSV of their rows,
 and their table between <!-- NAME:begin ... --> and <!-- NAME:end --> markers
-of docs/benchmarks.md (appended under `heading` when the markers are missing)."""
+of docs/benchmarks.md (appended under `heading` when the markers are missing);
+the volume meshes and the scene the VTK and ParaView comparisons give both
+renderers."""
 import csv
+import math
 import os
+import subprocess
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
+SHARED = os.environ.get("ZSWEEP_SHARED", os.path.join(ROOT, "..", "shared", "datasets"))
+
+MESHES = {
+    "spx": (["spx.off"], None),
+    "blunt": (["bluntfinxyz.bin", "--q", "bluntfinq.bin", "--scalar", "density"], None),
+    "post": (["postxyz.bin", "--q", "postq.bin", "--scalar", "velocity-magnitude"], None),
+}
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw)
+
+
+def mesh_args(name):
+    """`zsweep mesh convert` arguments of a benchmark mesh in ../shared/datasets."""
+    args = list(MESHES[name][0])
+    args[0] = os.path.join(SHARED, args[0])
+    if "--q" in args:
+        i = args.index("--q") + 1
+        args[i] = os.path.join(SHARED, args[i])
+    return args
+
+
+def scene_for(info, vtu, size, scan, precision="double"):
+    """The scene both renderers get: orthographic down -z onto the mesh, a
+    blue-white-red ramp with opacity 0 -> 0.6, unit distance diagonal / 50."""
+    lo, hi = info["bounds"]
+    c = [(a + b) / 2 for a, b in zip(lo, hi)]
+    r = 0.5 * math.dist(lo, hi)
+    smin, smax = info["scalar"]["min"], info["scalar"]["max"]
+    mid = 0.5 * (smin + smax)
+    return {
+        "mesh": {"path": vtu},
+        "image": {"width": size, "height": size, "background": [0, 0, 0, 0]},
+        "camera": {"projection": "orthographic", "eye": [c[0], c[1], c[2] + 4 * r], "target": c,
+                   "up": [0, 1, 0], "height": 2.2 * r},
+        "transfer_function": {
+            "color": [[smin, 0.23, 0.30, 0.75], [mid, 0.87, 0.87, 0.87], [smax, 0.71, 0.02, 0.15]],
+            "opacity": [[smin, 0.0], [smax, 0.6]],
+            "unit_distance": 2 * r / 50,
+        },
+        "render": {"scan": scan, "integrator": "exact", "precision": precision},
+    }
 
 
 def cpu_name():

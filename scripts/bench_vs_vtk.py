@@ -11,7 +11,6 @@ mesh loading and topology, which VTK also keeps between frames.
 import argparse
 import datetime
 import json
-import math
 import os
 import subprocess
 import sys
@@ -23,18 +22,9 @@ import vtk
 vtk.vtkObject.GlobalWarningDisplayOff()  # VTK ZSweep warns "Undefined edge case" per face
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_common import cpu_name, cpu_vector_isa, replace_block, write_csv  # noqa: E402
+from bench_common import MESHES, cpu_name, cpu_vector_isa, mesh_args, replace_block, run, scene_for, write_csv  # noqa: E402,F401
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
-SHARED = os.environ.get("ZSWEEP_SHARED", os.path.join(ROOT, "..", "shared", "datasets"))
-
-MESHES = {
-    "spx": (["spx.off"], None),
-    "blunt": (["bluntfinxyz.bin", "--q", "bluntfinq.bin", "--scalar", "density"], None),
-    "post": (["postxyz.bin", "--q", "postq.bin", "--scalar", "velocity-magnitude"], None),
-}
-
+from bench_common import ROOT, SHARED, ZSWEEP  # noqa: E402,F401
 
 # VTK's ray caster's integrators. With one scalar and independent components
 # (our scenes) it picks `preintegration` itself: a table of (front scalar,
@@ -47,39 +37,6 @@ VTK_INTEGRATORS = {
     "partial": vtk.vtkUnstructuredGridPartialPreIntegration,
     "linear": vtk.vtkUnstructuredGridLinearRayIntegrator,
 }
-
-
-def run(cmd, **kw):
-    return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw)
-
-
-def mesh_args(name):
-    args = list(MESHES[name][0])
-    args[0] = os.path.join(SHARED, args[0])
-    if "--q" in args:
-        i = args.index("--q") + 1
-        args[i] = os.path.join(SHARED, args[i])
-    return args
-
-
-def scene_for(info, vtu, size, scan, precision="double"):
-    lo, hi = info["bounds"]
-    c = [(a + b) / 2 for a, b in zip(lo, hi)]
-    r = 0.5 * math.dist(lo, hi)
-    smin, smax = info["scalar"]["min"], info["scalar"]["max"]
-    mid = 0.5 * (smin + smax)
-    return {
-        "mesh": {"path": vtu},
-        "image": {"width": size, "height": size, "background": [0, 0, 0, 0]},
-        "camera": {"projection": "orthographic", "eye": [c[0], c[1], c[2] + 4 * r], "target": c,
-                   "up": [0, 1, 0], "height": 2.2 * r},
-        "transfer_function": {
-            "color": [[smin, 0.23, 0.30, 0.75], [mid, 0.87, 0.87, 0.87], [smax, 0.71, 0.02, 0.15]],
-            "opacity": [[smin, 0.0], [smax, 0.6]],
-            "unit_distance": 2 * r / 50,
-        },
-        "render": {"scan": scan, "integrator": "exact", "precision": precision},
-    }
 
 
 def time_zsweep(scene_path, out_exr, repeat):

@@ -50,7 +50,7 @@ struct ExactSphere {
   uint32_t id;  // index in the SphereSet
 };
 
-enum class Query { Nearest, Band, Crossings };
+enum class Query { Nearest, Band, Crossings, Blocked };
 
 // Our state rides behind Embree's context (the documented way to reach it
 // from a filter callback).
@@ -62,6 +62,8 @@ struct Ctx {
   double best_t;    // nearest exact visible hit so far (ray parameter)
   uint32_t best_prim;
   std::vector<SphereCrossing>* out;  // Crossings: ray parameters for now, depths later
+  uint32_t skip_id;                   // Blocked: the sphere (set index) that never blocks
+  bool blocked;                       // Blocked: a crossing at t > 0 of another sphere was seen
 };
 
 inline bool better(double t, uint32_t id, double best_t, uint32_t best_id) {
@@ -85,6 +87,16 @@ void filter(const RTCFilterFunctionNArguments* args) {
         if (t1 > 0) ctx->out->push_back({t1, s.id, false});
       }
       args->valid[i] = 0;
+      continue;
+    }
+    if (ctx->query == Query::Blocked) {
+      // Any surface ahead of the origin (entry, or exit when the origin is
+      // inside) of another sphere blocks: accept it, and rtcOccluded1 stops.
+      if (line_hits && s.id != ctx->skip_id && (t0 > 0 || t1 > 0)) {
+        ctx->blocked = true;
+      } else {
+        args->valid[i] = 0;
+      }
       continue;
     }
     const double t = !line_hits ? -1.0 : t0 > 0 ? t0 : t1;
@@ -152,6 +164,23 @@ struct SphereReference::Impl {
     rh->hit.primID = RTC_INVALID_GEOMETRY_ID;
     return true;
   }
+  // A query `q` along o + t·u: the context (no best hit, no output, no
+  // sphere skipped) and the Embree ray; false when there is nothing to ask.
+  bool begin(Ctx* ctx, const glm::dvec3& o, const glm::dvec3& u, Query q, RTCRayHit* rh, double* t_shift) const {
+    if (!scene) return false;
+    rtcInitIntersectContext(&ctx->rc);
+    ctx->spheres = &spheres;
+    ctx->o = o;
+    ctx->u = u;
+    ctx->query = q;
+    ctx->best_t = std::numeric_limits<double>::infinity();
+    ctx->best_prim = RTC_INVALID_GEOMETRY_ID;
+    ctx->out = nullptr;
+    ctx->skip_id = UINT32_MAX;
+    ctx->blocked = false;
+    return setup(o, u, rh, t_shift);
+  }
+
 };
 
 SphereReference::SphereReference(const SphereSet& set, const View& view, int threads)
@@ -215,6 +244,7 @@ SphereReference::SphereReference(const SphereSet& set, const View& view, int thr
     v[4 * k + 3] = std::nextafter(float(m.spheres[k].r + margin_), std::numeric_limits<float>::infinity());
   }
   rtcSetGeometryIntersectFilterFunction(geom, filter);
+  rtcSetGeometryOccludedFilterFunction(geom, filter);
   rtcCommitGeometry(geom);
   rtcAttachGeometry(m.scene, geom);
   rtcReleaseGeometry(geom);
@@ -232,18 +262,12 @@ SphereReference::~SphereReference() = default;
 
 bool SphereReference::nearest(double X, double Y, double* depth, uint32_t* id, glm::dvec3* normal_view) const {
   const Impl& m = *impl_;
-  if (!m.scene) return false;
+  glm::dvec3 o, u;
+  m.view.ray(X, Y, &o, &u);
   Ctx ctx;
-  rtcInitIntersectContext(&ctx.rc);
-  ctx.spheres = &m.spheres;
-  m.view.ray(X, Y, &ctx.o, &ctx.u);
   alignas(16) RTCRayHit rh;
   double shift;
-  if (!m.setup(ctx.o, ctx.u, &rh, &shift)) return false;
-  ctx.query = Query::Nearest;
-  ctx.best_t = std::numeric_limits<double>::infinity();
-  ctx.best_prim = RTC_INVALID_GEOMETRY_ID;
-  ctx.out = nullptr;
+  if (!m.begin(&ctx, o, u, Query::Nearest, &rh, &shift)) return false;
   rtcIntersect1(m.scene, &ctx.rc, &rh);
   if (ctx.best_prim == RTC_INVALID_GEOMETRY_ID) return false;
   // Embree's float order may disagree with the exact one: a sphere whose
@@ -291,18 +315,10 @@ void SphereReference::crossings(double X, double Y, std::vector<SphereCrossing>*
 void SphereReference::ray_crossings(const glm::dvec3& o, const glm::dvec3& u, std::vector<SphereCrossing>* out) const {
   out->clear();
   const Impl& m = *impl_;
-  if (!m.scene) return;
   Ctx ctx;
-  rtcInitIntersectContext(&ctx.rc);
-  ctx.spheres = &m.spheres;
-  ctx.o = o;
-  ctx.u = u;
   alignas(16) RTCRayHit rh;
   double shift;
-  if (!m.setup(ctx.o, ctx.u, &rh, &shift)) return;
-  ctx.query = Query::Crossings;
-  ctx.best_t = std::numeric_limits<double>::infinity();
-  ctx.best_prim = RTC_INVALID_GEOMETRY_ID;
+  if (!m.begin(&ctx, o, u, Query::Crossings, &rh, &shift)) return;
   ctx.out = out;
   rtcIntersect1(m.scene, &ctx.rc, &rh);
   auto key = [](const SphereCrossing& a) { return std::tuple(a.depth, a.id, !a.entering); };
@@ -310,6 +326,17 @@ void SphereReference::ray_crossings(const glm::dvec3& o, const glm::dvec3& u, st
   out->erase(std::unique(out->begin(), out->end(),
                          [&](const SphereCrossing& a, const SphereCrossing& b) { return key(a) == key(b); }),
              out->end());
+}
+
+bool SphereReference::ray_blocked(const glm::dvec3& o, const glm::dvec3& u, uint32_t skip) const {
+  const Impl& m = *impl_;
+  Ctx ctx;
+  alignas(16) RTCRayHit rh;
+  double shift;
+  if (!m.begin(&ctx, o, u, Query::Blocked, &rh, &shift)) return false;
+  ctx.skip_id = skip;
+  rtcOccluded1(m.scene, &ctx.rc, &rh.ray);
+  return ctx.blocked;
 }
 
 namespace {
@@ -393,12 +420,12 @@ double traced_ao(const SphereReference& ref, const std::vector<glm::vec4>& color
   // Π(1 − α) over the spheres it crosses, each once (entered ahead of P, or
   // left ahead of P when P is inside it).
   auto open = [&](const glm::dvec3& w) {
+    if (!spec.alpha_occluders) return ref.ray_blocked(P, w, id) ? 0.0 : 1.0;  // any hit ends the ray
     ref.ray_crossings(P, w, &xs);
     double pass = 1;
     for (size_t q = 0; q < xs.size(); ++q) {
       const SphereCrossing& x = xs[q];
       if (x.id == id || !(x.depth > 0)) continue;
-      if (!spec.alpha_occluders) return 0.0;
       bool seen = false;
       for (size_t e = 0; e < q && !seen; ++e) seen = xs[e].id == x.id && xs[e].depth > 0;
       if (seen) continue;

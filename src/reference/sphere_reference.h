@@ -58,6 +58,11 @@ class SphereReference {
   void crossings(double X, double Y, std::vector<SphereCrossing>* out) const;
   // The same along any ray o + t·u (u unit), with `depth` the ray parameter t.
   void ray_crossings(const glm::dvec3& o, const glm::dvec3& u, std::vector<SphereCrossing>* out) const;
+  // Whether a sphere other than set index `skip` has a surface at t > 0 on
+  // that ray: true exactly when ray_crossings would list one. An any-hit
+  // query (Embree stops at the first), so it does not grow with the number
+  // of spheres the ray crosses. Thread-safe; no heap allocation.
+  bool ray_blocked(const glm::dvec3& o, const glm::dvec3& u, uint32_t skip) const;
 
   // Spheres left out: non-finite centre, radius not positive or not finite.
   size_t invalid() const { return invalid_; }

@@ -30,6 +30,36 @@ Scene default_scene() {
   return s;
 }
 
+namespace {
+
+// The scene's mesh, sphere set or surfaces, from `data` or their files.
+void load_scene_data(SceneInput& in, const SceneData* data) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (in.scene.kind == SceneKind::Spheres) {
+    const std::string& path = in.scene.spheres.path;
+    in.spheres = data && data->spheres.count(path) ? data->spheres.at(path) : read_sphere_file(path);
+    if (in.scene.spheres.radius_scale != 1.0)
+      for (double& r : in.spheres.radii) r *= in.scene.spheres.radius_scale;
+    in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return;
+  }
+  if (in.scene.kind == SceneKind::Surfaces) {
+    load_surfaces(in, data ? &data->surfaces : nullptr);
+    in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return;
+  }
+  const std::string& path = in.scene.mesh_path;
+  if (data && data->meshes.count(path)) {
+    in.mesh = data->meshes.at(path);
+  } else {
+    in.mesh = path.empty() ? default_mesh() : read_mesh(path, in.scene.mesh_options);
+  }
+  in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (in.mesh.num_tets() == 0) throw std::runtime_error(path + ": mesh has no tets");
+}
+
+}  // namespace
+
 SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options) {
   SceneInput in;
   if (input.empty()) {
@@ -47,22 +77,15 @@ SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_op
     in.scene.mesh_path = input;
     in.scene.mesh_options = mesh_options;
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  if (in.scene.kind == SceneKind::Spheres) {
-    in.spheres = read_sphere_file(in.scene.spheres.path);
-    if (in.scene.spheres.radius_scale != 1.0)
-      for (double& r : in.spheres.radii) r *= in.scene.spheres.radius_scale;
-    in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return in;
-  }
-  if (in.scene.kind == SceneKind::Surfaces) {
-    load_surfaces(in);
-    in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return in;
-  }
-  in.mesh = in.scene.mesh_path.empty() ? default_mesh() : read_mesh(in.scene.mesh_path, in.scene.mesh_options);
-  in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (in.mesh.num_tets() == 0) throw std::runtime_error(in.scene.mesh_path + ": mesh has no tets");
+  load_scene_data(in, nullptr);
+  return in;
+}
+
+SceneInput load_scene_input_text(const std::string& json_text, const std::string& name, const std::string& base_dir,
+                                 const SceneData& data) {
+  SceneInput in;
+  in.scene = parse_scene(json_text, name, base_dir);
+  load_scene_data(in, &data);
   return in;
 }
 

@@ -3,6 +3,7 @@
 // default scene). Shared by render, reference and the benchmarks.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "mesh/io/mesh_io.h"
@@ -25,12 +26,26 @@ struct SceneInput {
   double ms_load = 0;
 };
 
+// Data that a scene names in place of a file (the Python module's arrays):
+// where the scene's path equals a key here, the data is used and no file is
+// read. Each entry is checked as a reader checks its file.
+struct SceneData {
+  std::map<std::string, TetMesh> meshes;
+  std::map<std::string, SphereSet> spheres;
+  std::map<std::string, TriangleMesh> surfaces;
+  bool empty() const { return meshes.empty() && spheres.empty() && surfaces.empty(); }
+};
+
 // Reads the scene (if any) and its mesh, sphere set or surfaces (a bare
 // .pdb/.sph/.sphb file is a sphere scene with defaults; a bare .obj/.ply/.stl
 // or OFF surface a surface scene over a ground plane with one light). Throws std::runtime_error naming the
 // file. Camera and transfer function are filled in by finish_scene, after the
 // caller has applied its overrides (the automatic camera depends on the size).
 SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options);
+// A scene given as JSON text (`name` in messages, relative paths from
+// `base_dir`) whose files may be `data` instead.
+SceneInput load_scene_input_text(const std::string& json_text, const std::string& name, const std::string& base_dir,
+                                 const SceneData& data);
 void finish_scene(SceneInput& in, Projection auto_projection = Projection::Orthographic);
 
 }  // namespace zs

@@ -24,13 +24,13 @@ glm::dvec3 rotate(const glm::dvec3& p, const glm::dvec3& deg) {
 
 }  // namespace
 
-void load_surfaces(SceneInput& in) {
+void load_surfaces(SceneInput& in, const std::map<std::string, TriangleMesh>* data) {
   SurfaceScene& ss = in.scene.surfaces;
   TriangleMesh all;
   for (size_t i = 0; i < ss.surfaces.size(); ++i) {
     const SurfaceEntry& e = ss.surfaces[i];
     SurfaceReadCounts rc;
-    TriangleMesh m = read_surface(e.path, &rc);
+    TriangleMesh m = data && data->count(e.path) ? data->at(e.path) : read_surface(e.path, &rc);
     in.surface_polygons_split += rc.split;
     in.surface_elements_dropped += rc.dropped;
     for (glm::dvec3& p : m.points) p = e.translate + rotate(e.scale * p, e.rotate_deg);

@@ -8,8 +8,9 @@ namespace zs {
 // Reads every surface, applies its transform, appends the ground square
 // and computes point normals into in.surface. The ground is a square of side
 // 4× the surfaces' largest horizontal extent (x, z), centred under them, at
-// ground.height or (automatic) the surfaces' lowest y, facing +y.
-void load_surfaces(SceneInput& in);
+// ground.height or (automatic) the surfaces' lowest y, facing +y. A surface
+// whose path is a key of `data` is that mesh instead of a file.
+void load_surfaces(SceneInput& in, const std::map<std::string, TriangleMesh>* data = nullptr);
 
 // Perspective (or the given projection) camera looking at the surfaces'
 // bounds obliquely from above and in front (direction (0.6, 0.5, 1)), y up,

@@ -324,6 +324,38 @@ TEST(SphereReference, CrossingsSortedTwoPerSphere) {
   }
 }
 
+// The any-hit query the AO reference uses agrees with the full crossing
+// list, from points on (and just inside) the spheres of a dense random set,
+// where rays start inside neighbours and graze them.
+TEST(SphereReference, RayBlockedAgreesWithCrossings) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::vector<glm::dvec3> c;
+  std::vector<double> r;
+  for (int k = 0; k < 300; ++k) {
+    c.push_back({2 * U(rng), 2 * U(rng), 2 * U(rng)});
+    r.push_back(0.15 + 0.1 * (U(rng) + 1));
+  }
+  const View v(camera(Projection::Orthographic), 8, 8);
+  const SphereReference ref(make_set(c, r), v);
+  std::vector<SphereCrossing> cr;
+  int blocked = 0, open = 0;
+  for (int q = 0; q < 4000; ++q) {
+    const uint32_t id = uint32_t(q % c.size());
+    glm::dvec3 n = glm::normalize(glm::dvec3(U(rng), U(rng), U(rng)));
+    glm::dvec3 w = glm::normalize(glm::dvec3(U(rng), U(rng), U(rng)));
+    if (glm::dot(n, w) < 0) w = -w;
+    const glm::dvec3 P = c[id] + r[id] * (q % 2 ? 1.0 : 0.999) * n;
+    ref.ray_crossings(P, w, &cr);
+    bool expect = false;
+    for (const SphereCrossing& x : cr) expect |= x.id != id && x.depth > 0;
+    ASSERT_EQ(ref.ray_blocked(P, w, id), expect) << q;
+    (expect ? blocked : open) += 1;
+  }
+  EXPECT_GT(blocked, 400);  // both answers are exercised
+  EXPECT_GT(open, 400);
+}
+
 TEST(SphereReference, EqualDepthCrossingsOrderedById) {
   const View v(camera(Projection::Orthographic), 16, 16);
   const SphereReference ref(make_set({{0, 0, 0}, {0, 0, 0}}, {1.0, 1.0}), v);

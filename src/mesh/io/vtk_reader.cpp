@@ -5,6 +5,10 @@
 // -> split non-tet 3-D cells with vtkDataSetTriangleFilter -> drop points no
 // tet uses.
 #include <vtkCell.h>
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkCellData.h>
 #include <vtkCellDataToPointData.h>
 #include <vtkCellType.h>
@@ -27,6 +31,8 @@
 #include <vtkXMLGenericDataObjectReader.h>
 
 #include <algorithm>
+#include <climits>
+#include <stdexcept>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -401,10 +407,11 @@ std::vector<Tet> tets_of_structured(vtkDataSet* ds, TetMesh& m, const std::strin
 
 }  // namespace
 
-TetMesh read_vtk(const std::string& path, const ReadOptions& opt) {
-  detail::VtkMessageCapture capture;
-  vtkSmartPointer<vtkDataSet> ds = read_dataset(path, capture);
+namespace {
 
+// The tets of a dataset (read_vtk's pipeline after reading).
+TetMesh tet_mesh_of(vtkDataSet* ds, const ReadOptions& opt, const std::string& path,
+                    detail::VtkMessageCapture& capture) {
   if (ds->GetNumberOfPoints() >= static_cast<vtkIdType>(UINT32_MAX))
     throw FileError(path, "too many points for 32-bit tet indices");
   TetMesh m;
@@ -437,6 +444,115 @@ TetMesh read_vtk(const std::string& path, const ReadOptions& opt) {
   m.tets = std::move(tets);
   if (next < n) m.notes.push_back("dropped " + plural(n - next, "point") + " used by no tet");
   return m;
+}
+
+}  // namespace
+
+TetMesh read_vtk(const std::string& path, const ReadOptions& opt) {
+  detail::VtkMessageCapture capture;
+  vtkSmartPointer<vtkDataSet> ds = read_dataset(path, capture);
+  return tet_mesh_of(ds, opt, path, capture);
+}
+
+namespace {
+
+// Points a cell of this type has: > 0 exactly that many, 0 any number (at
+// least one), -n at least n (higher-order cells), INT_MIN not a type we take.
+// VTK trusts a grid's arrays; arrays from a caller are checked against this
+// first, so no cell makes VTK read past its connectivity.
+int cell_points(int type) {
+  switch (type) {
+    case VTK_VERTEX: return 1;
+    case VTK_LINE: return 2;
+    case VTK_TRIANGLE: return 3;
+    case VTK_PIXEL: case VTK_QUAD: case VTK_TETRA: return 4;
+    case VTK_PYRAMID: return 5;
+    case VTK_WEDGE: return 6;
+    case VTK_VOXEL: case VTK_HEXAHEDRON: return 8;
+    case VTK_PENTAGONAL_PRISM: return 10;
+    case VTK_HEXAGONAL_PRISM: return 12;
+    case VTK_QUADRATIC_EDGE: return 3;
+    case VTK_QUADRATIC_TRIANGLE: return 6;
+    case VTK_QUADRATIC_QUAD: return 8;
+    case VTK_QUADRATIC_TETRA: return 10;
+    case VTK_QUADRATIC_HEXAHEDRON: return 20;
+    case VTK_QUADRATIC_WEDGE: return 15;
+    case VTK_QUADRATIC_PYRAMID: return 13;
+    case VTK_BIQUADRATIC_QUAD: return 9;
+    case VTK_TRIQUADRATIC_HEXAHEDRON: return 27;
+    case VTK_TRIQUADRATIC_PYRAMID: return 19;
+    case VTK_QUADRATIC_LINEAR_QUAD: return 6;
+    case VTK_QUADRATIC_LINEAR_WEDGE: return 12;
+    case VTK_BIQUADRATIC_QUADRATIC_WEDGE: return 18;
+    case VTK_BIQUADRATIC_QUADRATIC_HEXAHEDRON: return 24;
+    case VTK_BIQUADRATIC_TRIANGLE: return 7;
+    case VTK_CUBIC_LINE: return 4;
+    case VTK_POLY_VERTEX: case VTK_POLY_LINE: return 0;
+    case VTK_TRIANGLE_STRIP: case VTK_POLYGON: return -3;
+    default: {
+      const auto corner = corner_cell(type);
+      return corner.first >= 0 ? -corner.second : INT_MIN;
+    }
+  }
+}
+
+}  // namespace
+
+TetMesh tet_mesh_from_cells(const VtkCells& c, const std::string& name) {
+  static_assert(sizeof(vtkIdType) == sizeof(int64_t), "VTK built with 64-bit ids");
+  for (int64_t i = 0; i < c.num_cells; ++i) {
+    const int want = cell_points(int(c.types[i]));
+    const int64_t have = c.offsets[i + 1] - c.offsets[i];
+    if (want == INT_MIN)
+      throw std::runtime_error(name + ": cell " + std::to_string(i) + " has VTK type " + std::to_string(c.types[i]) +
+                               ", which is not taken from arrays");
+    if ((want > 0 && have != want) || (want == 0 && have < 1) || (want < 0 && have < -want))
+      throw std::runtime_error(name + ": cell " + std::to_string(i) + " (VTK type " + std::to_string(c.types[i]) +
+                               ") has " + std::to_string(have) + " points");
+  }
+  detail::VtkMessageCapture capture;
+  auto xyz = vtkSmartPointer<vtkDoubleArray>::New();
+  xyz->SetNumberOfComponents(3);
+  xyz->SetArray(const_cast<double*>(c.points), c.num_points * 3, 1);  // 1: VTK never frees it
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetData(xyz);
+  auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
+  offsets->SetArray(reinterpret_cast<vtkIdType*>(const_cast<int64_t*>(c.offsets)), c.num_cells + 1, 1);
+  auto conn = vtkSmartPointer<vtkIdTypeArray>::New();
+  conn->SetArray(reinterpret_cast<vtkIdType*>(const_cast<int64_t*>(c.connectivity)), c.num_connectivity, 1);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, conn);
+  auto types = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  types->SetNumberOfValues(c.num_cells);
+  for (int64_t i = 0; i < c.num_cells; ++i) types->SetValue(i, static_cast<unsigned char>(c.types[i]));
+  auto ug = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  ug->SetPoints(points);
+  ug->SetCells(types, cells);
+  ReadOptions opt;
+  if (c.scalars) {
+    auto s = vtkSmartPointer<vtkDoubleArray>::New();
+    s->SetName("scalar");
+    s->SetArray(const_cast<double*>(c.scalars), c.num_points, 1);
+    ug->GetPointData()->SetScalars(s);
+    opt.scalar = "scalar";
+  } else if (c.cell_scalars) {
+    // The averaging rounds in the array's own type (vtkCellDataToPointData).
+    vtkSmartPointer<vtkDataArray> s;
+    if (c.cell_scalars_float) {
+      auto f = vtkSmartPointer<vtkFloatArray>::New();
+      f->SetNumberOfValues(c.num_cells);
+      for (int64_t i = 0; i < c.num_cells; ++i) f->SetValue(i, float(c.cell_scalars[i]));
+      s = f;
+    } else {
+      auto d = vtkSmartPointer<vtkDoubleArray>::New();
+      d->SetArray(const_cast<double*>(c.cell_scalars), c.num_cells, 1);
+      s = d;
+    }
+    s->SetName("scalar");
+    ug->GetCellData()->SetScalars(s);
+    opt.scalar = "scalar";
+  }
+  return tet_mesh_of(ug, opt, name, capture);
 }
 
 }  // namespace zs

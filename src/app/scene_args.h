@@ -1,4 +1,4 @@
-// Command-line options shared by `render` and `reference`: the input (scene,
+// Options shared by `render`, `reference` and the Python module's render: the input (scene,
 // mesh or nothing), mesh options, size and camera overrides, threads, and —
 // for the engine only — the speed/accuracy knobs.
 #pragma once
@@ -30,6 +30,12 @@ struct SceneArgs {
   void add_options(CLI::App& cmd, bool engine_knobs);
   // Loads the input and applies every override; camera and TF are complete.
   SceneInput load() const;
+  // The same overrides on a scene loaded otherwise (the Python module's).
+  void apply(SceneInput& in) const;
+
+ private:
+  // Throws on a bad knob; returns them parsed.
+  RenderSettings check() const;
 };
 
 }  // namespace zs

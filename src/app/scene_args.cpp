@@ -1,4 +1,4 @@
-#include "cli/scene_args.h"
+#include "app/scene_args.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -32,9 +32,14 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
 }
 
 SceneInput SceneArgs::load() const {
-  Projection p = Projection::Orthographic;
-  if (projection == "perspective") p = Projection::Perspective;
-  else if (!projection.empty() && projection != "orthographic")
+  check();  // before any file is read
+  SceneInput in = load_scene_input(input, opt);
+  apply(in);
+  return in;
+}
+
+RenderSettings SceneArgs::check() const {
+  if (!projection.empty() && projection != "perspective" && projection != "orthographic")
     throw std::runtime_error("--projection must be orthographic or perspective");
   RenderSettings knobs;
   if (!scan.empty() && !parse_scan_strategy(scan, &knobs.scan))
@@ -45,8 +50,12 @@ SceneInput SceneArgs::load() const {
     throw std::runtime_error("--integrator must be exact, linear, preintegrated or taylor2");
   if (!precision.empty() && precision != "double" && precision != "single")
     throw std::runtime_error("--precision must be double or single");
+  return knobs;
+}
 
-  SceneInput in = load_scene_input(input, opt);
+void SceneArgs::apply(SceneInput& in) const {
+  const RenderSettings knobs = check();
+  Projection p = projection == "perspective" ? Projection::Perspective : Projection::Orthographic;
   RenderSettings& rs = in.scene.settings;
   if (width) rs.width = width;
   if (height) rs.height = height;
@@ -63,7 +72,6 @@ SceneInput SceneArgs::load() const {
   // Surfaces are framed in perspective unless told otherwise.
   if (projection.empty() && in.scene.kind == SceneKind::Surfaces) p = Projection::Perspective;
   finish_scene(in, p);
-  return in;
 }
 
 }  // namespace zs

@@ -1,0 +1,51 @@
+"""zsweep.generate: the generators of `zsweep mesh generate` and `zsweep
+spheres generate`, returning scene data (numpy arrays) instead of files.
+
+Tet meshes come back as {"points": (N, 3), "tets": (M, 4), "scalar": (N,)},
+sphere sets as {"centers": (N, 3), "radii": (N,), "colors": (N, 4)}: each can
+be a scene's "mesh" or "spheres" as it is.
+"""
+import os
+
+from . import _zsweep  # loaded by zsweep/__init__.py first
+
+__all__ = ["shape", "surface", "implicit", "image", "spheres", "shapes", "implicit_solids", "fields"]
+
+
+def shape(name, tets=10000, quality=1.414, field="radial", seed=1):
+    """TetGen mesh of a synthetic shape (zsweep.generate.shapes()) near `tets` tets."""
+    return _zsweep.generate_shape(name, int(tets), float(quality), field, int(seed))
+
+
+def surface(path, quality=1.414, max_volume=0.0, preserve_surface=False, field="distance", seed=1):
+    """TetGen mesh of the volume inside a closed surface file (.off, .stl, .ply, .obj)."""
+    return _zsweep.generate_surface(os.fspath(path), float(quality), float(max_volume), bool(preserve_surface), field,
+                                    int(seed))
+
+
+def implicit(name, size=None, field="distance", seed=1):
+    """CGAL Mesh_3 mesh of an implicit solid (zsweep.generate.implicit_solids())."""
+    return _zsweep.generate_implicit(name, None if size is None else float(size), field, int(seed))
+
+
+def image(path, iso, below=False, size=None, field="image", seed=1):
+    """CGAL Mesh_3 mesh of a grey-level 3D image's iso-region (.inr, .inr.gz)."""
+    return _zsweep.generate_image(os.fspath(path), float(iso), bool(below), None if size is None else float(size), field,
+                                  int(seed))
+
+
+def spheres(set, count=0, seed=1):
+    """The sphere test sets C1-C4 ("c1".."c4"); count 0: the set's full size."""
+    return _zsweep.generate_spheres(set, int(count), int(seed))
+
+
+def shapes():
+    return _zsweep.shapes()
+
+
+def implicit_solids():
+    return _zsweep.implicit_solids()
+
+
+def fields():
+    return _zsweep.fields() + ["none"]

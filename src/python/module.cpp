@@ -1,0 +1,263 @@
+// The `_zsweep` extension behind `import zsweep` (python/zsweep/__init__.py
+// turns scene dicts, numpy arrays and VTK objects into what this takes).
+// Everything a render does runs through the same SceneJob (app/scene_job.h)
+// as `zsweep render`, so an image here equals the CLI's bit for bit.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstring>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "app/reference_scene.h"
+#include "app/scene_args.h"
+#include "app/scene_job.h"
+#include "image/image.h"
+#include "image/image_compare.h"
+#include "python/py_data.h"
+#include "python/py_generate.h"
+
+namespace py = pybind11;
+
+namespace zs::python {
+
+namespace {
+
+struct Cancelled : std::runtime_error {
+  Cancelled() : std::runtime_error("render interrupted") {}
+};
+
+// Runs `work` on a thread of its own with the GIL released, waking every
+// 50 ms to let Python see signals: on Ctrl-C (KeyboardInterrupt) `cancel` is
+// set, the render stops after the tiles in flight, and the interrupt is
+// raised. Exceptions from `work` are rethrown here.
+void run_cancellable(const std::function<void(const std::atomic<bool>&)>& work) {
+  std::atomic<bool> cancel{false};
+  std::exception_ptr err;
+  std::mutex mu;
+  std::condition_variable cv;
+  bool done = false, interrupted = false;
+  {
+    py::gil_scoped_release nogil;
+    std::thread t([&] {
+      try {
+        work(cancel);
+      } catch (...) {
+        err = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mu);
+      done = true;
+      cv.notify_all();
+    });
+    std::unique_lock<std::mutex> lock(mu);
+    while (!done) {
+      if (cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) break;
+      if (interrupted) continue;
+      lock.unlock();
+      {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) interrupted = true;  // the error indicator now holds the interrupt
+      }
+      if (interrupted) cancel = true;
+      lock.lock();
+    }
+    lock.unlock();
+    t.join();
+  }
+  if (interrupted) throw py::error_already_set();
+  if (err) std::rethrow_exception(err);
+}
+
+// Tiles straight into a (height, width, channels) float32 array.
+class ArraySink : public TileSink {
+ public:
+  ArraySink(float* data, const TileGrid& g, const std::atomic<bool>& cancel) : data_(data), g_(g), cancel_(cancel) {}
+  void tile(const TileRect& r, const float* px) override {
+    if (cancel_) throw Cancelled();
+    const size_t c = g_.channels, w = r.x1 - r.x0;
+    for (uint32_t y = r.y0; y < r.y1; ++y)
+      std::memcpy(data_ + (size_t(y) * g_.width + r.x0) * c, px + size_t(y - r.y0) * w * c, w * c * sizeof(float));
+  }
+
+ private:
+  float* data_;
+  TileGrid g_;
+  const std::atomic<bool>& cancel_;
+};
+
+struct Options {
+  SceneArgs args;
+  bool no_culling = false;
+  int frames = 1;
+};
+
+Options options_from(const py::dict& o) {
+  Options out;
+  SceneArgs& a = out.args;
+  for (auto kv : o) {
+    const std::string k = py::str(kv.first);
+    const py::handle v = kv.second;
+    if (v.is_none()) continue;
+    auto positive = [&](double x) {
+      if (!(x > 0)) throw py::value_error(k + " must be positive");
+      return x;
+    };
+    if (k == "width") a.width = uint32_t(positive(v.cast<double>()));
+    else if (k == "height") a.height = uint32_t(positive(v.cast<double>()));
+    else if (k == "threads") a.threads = int(positive(v.cast<double>()));
+    else if (k == "projection") a.projection = v.cast<std::string>();
+    else if (k == "memory_budget") a.memory_budget_mb = positive(v.cast<double>());
+    else if (k == "scan") a.scan = v.cast<std::string>();
+    else if (k == "variant") a.variant = v.cast<std::string>();
+    else if (k == "integrator") a.integrator = v.cast<std::string>();
+    else if (k == "precision") a.precision = v.cast<std::string>();
+    else if (k == "early_termination") a.early_termination = v.cast<double>();
+    else if (k == "max_list_length") a.max_list_length = v.cast<int64_t>();
+    else if (k == "tile_size") a.tile_size = uint32_t(positive(v.cast<double>()));
+    else if (k == "scalar") a.opt.scalar = v.cast<std::string>();
+    else if (k == "q") a.opt.q_path = v.cast<std::string>();
+    else if (k == "no_culling") out.no_culling = v.cast<bool>();
+    else if (k == "frames") out.frames = int(positive(v.cast<double>()));
+    else throw py::type_error("render() got an unexpected option '" + k + "'");
+  }
+  if (a.width > (1u << 20) || a.height > (1u << 20)) throw py::value_error("width and height must be at most 1048576");
+  if (a.tile_size && (a.tile_size < 8 || a.tile_size > 4096)) throw py::value_error("tile_size must be in [8, 4096]");
+  return out;
+}
+
+// The scene of a call: JSON text (or, when empty, `name` as a bare file or
+// the default scene) with its data and options applied; loaded without the GIL.
+std::unique_ptr<SceneInput> load(const std::string& text, const std::string& name, const std::string& base_dir,
+                                 const py::dict& data, Options& o) {
+  const SceneData sd = scene_data_from(data);
+  auto in = std::make_unique<SceneInput>();
+  run_cancellable([&](const std::atomic<bool>&) {
+    // No JSON text: `name` is a bare mesh, sphere or surface file, or empty
+    // for the embedded default scene, as on the command line.
+    *in = text.empty() ? load_scene_input(name, o.args.opt) : load_scene_input_text(text, name, base_dir, sd);
+    o.args.apply(*in);
+  });
+  return in;
+}
+
+std::vector<std::string> names_of(const SceneJob& job) {
+  std::vector<std::string> names = job.channel_names();
+  if (names.empty()) names = job.grid().channels == 5 ? std::vector<std::string>{"R", "G", "B", "A", "Z"}
+                                                      : std::vector<std::string>{"R", "G", "B", "A"};
+  return names;
+}
+
+// A loaded scene rendered through its SceneJob into a new array.
+py::tuple render_input(SceneInput& in, const Options& o) {
+  std::unique_ptr<SceneJob> job;
+  run_cancellable([&](const std::atomic<bool>&) {
+    in.scene.settings.face_area_stats = true;  // the stats are always returned
+    job = make_scene_job(in, o.no_culling);
+    job->check_budget(0);
+  });
+  const TileGrid g = job->grid();
+  py::array_t<float> img({size_t(g.height), size_t(g.width), size_t(g.channels)});
+  float* px = img.mutable_data();
+  FrameReport report;
+  std::unique_ptr<TiledRenderer> r;
+  const uint64_t out_bytes = uint64_t(g.width) * g.height * g.channels * sizeof(float);
+  run_cancellable([&](const std::atomic<bool>& cancel) {
+    ArraySink sink(px, g, cancel);
+    struct Warmup : TileSink {  // frames before the last: nowhere, but Ctrl-C still stops them
+      const std::atomic<bool>& cancel;
+      explicit Warmup(const std::atomic<bool>& c) : cancel(c) {}
+      void tile(const TileRect&, const float*) override {
+        if (cancel) throw Cancelled();
+      }
+    } warmup(cancel);
+    r = render_frames(*job, o.frames, sink, out_bytes, false, &report.frame_ms, &warmup);
+  });
+  if (o.frames > 1) report.best_ms = *std::min_element(report.frame_ms.begin(), report.frame_ms.end());
+  return py::make_tuple(img, names_of(*job), job->stats(*r, report).dump());
+}
+
+// render(scene_json, name, base_dir, data, options) -> (image, channel names, stats JSON)
+py::tuple render(const std::string& text, const std::string& name, const std::string& base_dir, const py::dict& data,
+                 const py::dict& options) {
+  Options o = options_from(options);
+  std::unique_ptr<SceneInput> in = load(text, name, base_dir, data, o);
+  return render_input(*in, o);
+}
+
+// reference(...) -> the same triple, from the independent ray casters
+// (surface scenes: the renderer's exact mode). Not interruptible inside.
+py::tuple reference(const std::string& text, const std::string& name, const std::string& base_dir,
+                    const py::dict& data, const py::dict& options, uint32_t ao_samples) {
+  Options o = options_from(options);
+  std::unique_ptr<SceneInput> in = load(text, name, base_dir, data, o);
+  if (in->scene.kind == SceneKind::Surfaces) {
+    if (ao_samples) throw py::value_error("ao_samples needs a sphere scene with an 'ao' block");
+    in->scene.surfaces.shadows.mode = ShadowMode::Exact;
+    return render_input(*in, o);
+  }
+  ReferenceImage ref;
+  run_cancellable([&](const std::atomic<bool>&) { ref = reference_image(*in, ao_samples); });
+  const size_t C = ref.names.size();
+  py::array_t<float> img({size_t(ref.height), size_t(ref.width), C});
+  std::copy(ref.pixels.begin(), ref.pixels.end(), img.mutable_data());
+  return py::make_tuple(img, ref.names, ref.stats.dump());
+}
+
+// write_image(path, rgba): PNG (8-bit), EXR or TIFF (float) by the name, as
+// the command line writes RGBA; nothing under `path` if it fails.
+void write(const std::string& path, const py::array_t<float, py::array::c_style | py::array::forcecast>& x) {
+  if (x.ndim() != 3 || x.shape(2) < 4) throw py::value_error("image must have shape (height, width, 4) or more channels");
+  Image img(uint32_t(x.shape(1)), uint32_t(x.shape(0)));
+  const size_t C = size_t(x.shape(2)), n = size_t(x.shape(0)) * size_t(x.shape(1));
+  for (size_t p = 0; p < n; ++p) std::copy_n(x.data() + p * C, 4, img.rgba.data() + p * 4);
+  py::gil_scoped_release nogil;
+  write_image(path, img);
+}
+
+py::dict compare(const py::array_t<float, py::array::c_style | py::array::forcecast>& a,
+                 const py::array_t<float, py::array::c_style | py::array::forcecast>& b, bool rgb) {
+  auto image = [](const py::array_t<float, py::array::c_style | py::array::forcecast>& x, const char* which) {
+    if (x.ndim() != 3 || x.shape(2) < 4)
+      throw py::value_error(std::string(which) + " must have shape (height, width, 4) or more channels");
+    Image img(uint32_t(x.shape(1)), uint32_t(x.shape(0)));
+    const size_t C = size_t(x.shape(2)), n = size_t(x.shape(0)) * size_t(x.shape(1));
+    for (size_t p = 0; p < n; ++p) std::copy_n(x.data() + p * C, 4, img.rgba.data() + p * 4);
+    return img;
+  };
+  if (a.ndim() == 3 && b.ndim() == 3 && (a.shape(0) != b.shape(0) || a.shape(1) != b.shape(1)))
+    throw py::value_error("the images' sizes differ");
+  const ImageDiff d = compare_images(image(a, "a"), image(b, "b"), rgb ? 3 : 4);
+  py::dict out;
+  out["max_abs"] = d.max_abs;
+  out["rmse"] = d.rmse;
+  out["psnr"] = std::isinf(d.psnr) ? py::object(py::none()) : py::object(py::float_(d.psnr));
+  out["pixels_over_1_255"] = d.pixels_over_1_255;
+  out["worst_pixel"] = py::make_tuple(d.worst_x, d.worst_y);
+  return out;
+}
+
+}  // namespace
+
+}  // namespace zs::python
+
+PYBIND11_MODULE(_zsweep, m) {
+  m.doc() = "zsweep's renderers (use the zsweep package, not this module)";
+  m.def("render", &zs::python::render, py::arg("scene_json"), py::arg("name"), py::arg("base_dir"), py::arg("data"),
+        py::arg("options"));
+  m.def("reference", &zs::python::reference, py::arg("scene_json"), py::arg("name"), py::arg("base_dir"),
+        py::arg("data"), py::arg("options"), py::arg("ao_samples"));
+  m.def("write_image", &zs::python::write, py::arg("path"), py::arg("image"));
+  m.def("compare", &zs::python::compare, py::arg("a"), py::arg("b"), py::arg("rgb") = false);
+  zs::python::add_generate(m);
+}
