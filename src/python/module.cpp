@@ -214,30 +214,29 @@ py::tuple reference(const std::string& text, const std::string& name, const std:
   return py::make_tuple(img, ref.names, ref.stats.dump());
 }
 
-// write_image(path, rgba): PNG (8-bit), EXR or TIFF (float) by the name, as
-// the command line writes RGBA; nothing under `path` if it fails.
-void write(const std::string& path, const py::array_t<float, py::array::c_style | py::array::forcecast>& x) {
-  if (x.ndim() != 3 || x.shape(2) < 4) throw py::value_error("image must have shape (height, width, 4) or more channels");
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// An (height, width, 4+) array's RGBA as an Image; `which` names it in the error.
+Image image_of(const FloatArray& x, const std::string& which) {
+  if (x.ndim() != 3 || x.shape(2) < 4) throw py::value_error(which + " must have shape (height, width, 4) or more channels");
   Image img(uint32_t(x.shape(1)), uint32_t(x.shape(0)));
   const size_t C = size_t(x.shape(2)), n = size_t(x.shape(0)) * size_t(x.shape(1));
   for (size_t p = 0; p < n; ++p) std::copy_n(x.data() + p * C, 4, img.rgba.data() + p * 4);
+  return img;
+}
+
+// write_image(path, rgba): PNG (8-bit), EXR or TIFF (float) by the name, as
+// the command line writes RGBA; nothing under `path` if it fails.
+void write(const std::string& path, const FloatArray& x) {
+  const Image img = image_of(x, "image");
   py::gil_scoped_release nogil;
   write_image(path, img);
 }
 
-py::dict compare(const py::array_t<float, py::array::c_style | py::array::forcecast>& a,
-                 const py::array_t<float, py::array::c_style | py::array::forcecast>& b, bool rgb) {
-  auto image = [](const py::array_t<float, py::array::c_style | py::array::forcecast>& x, const char* which) {
-    if (x.ndim() != 3 || x.shape(2) < 4)
-      throw py::value_error(std::string(which) + " must have shape (height, width, 4) or more channels");
-    Image img(uint32_t(x.shape(1)), uint32_t(x.shape(0)));
-    const size_t C = size_t(x.shape(2)), n = size_t(x.shape(0)) * size_t(x.shape(1));
-    for (size_t p = 0; p < n; ++p) std::copy_n(x.data() + p * C, 4, img.rgba.data() + p * 4);
-    return img;
-  };
+py::dict compare(const FloatArray& a, const FloatArray& b, bool rgb) {
   if (a.ndim() == 3 && b.ndim() == 3 && (a.shape(0) != b.shape(0) || a.shape(1) != b.shape(1)))
     throw py::value_error("the images' sizes differ");
-  const ImageDiff d = compare_images(image(a, "a"), image(b, "b"), rgb ? 3 : 4);
+  const ImageDiff d = compare_images(image_of(a, "a"), image_of(b, "b"), rgb ? 3 : 4);
   py::dict out;
   out["max_abs"] = d.max_abs;
   out["rmse"] = d.rmse;
