@@ -60,9 +60,17 @@ SphereGrid build_sphere_grid(const SphereSet& s, uint32_t n) {
     g.centre[next[k]] = s.centres[i];
     g.radius[next[k]] = s.radii[i];
     g.ids[next[k]++] = uint32_t(i);
-    const glm::dvec3 r(s.radii[i]);
-    g.lo[k] = glm::min(g.lo[k], s.centres[i] - r);
-    g.hi[k] = glm::max(g.hi[k], s.centres[i] + r);
+    // The sphere's box rounded outward: a radius below the centre's ulp
+    // would otherwise vanish from it (c - r == c), and the cell would project
+    // to its centre pixel only and be culled by what covers that pixel (a
+    // fuzzing finding). One ulp wider is still a box of the sphere.
+    const glm::dvec3 c = s.centres[i], r(s.radii[i]);
+    const glm::dvec3 lo_i(std::nextafter(c.x - r.x, -INFINITY), std::nextafter(c.y - r.y, -INFINITY),
+                          std::nextafter(c.z - r.z, -INFINITY));
+    const glm::dvec3 hi_i(std::nextafter(c.x + r.x, INFINITY), std::nextafter(c.y + r.y, INFINITY),
+                          std::nextafter(c.z + r.z, INFINITY));
+    g.lo[k] = glm::min(g.lo[k], lo_i);
+    g.hi[k] = glm::max(g.hi[k], hi_i);
   }
   return g;
 }

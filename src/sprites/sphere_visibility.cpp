@@ -394,7 +394,7 @@ std::vector<uint32_t> visible_spheres(const SphereSet& s, const SphereGrid& g, c
                   SphereHit h;
                   if (!sphere_hit(su, double(i), double(j), &h)) continue;
                   hit_any = true;
-                          if (!map->hidden_at(i, j, h.t)) {
+                  if (!map->hidden_at(i, j, h.t)) {
                     seen = true;
                     break;
                   }
