@@ -427,6 +427,19 @@ void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const d
       r = lim[i] <= lo ? levels : r;
       cls[i] = ok ? r : 0u;
     }
+    if (!spot && levels == 1) {
+      // 1-SM, PCF 1 (the defaults): one texel, read for every point in a
+      // loop without calls or inner loops (count's arithmetic).
+      for (size_t i = 0; i < m; ++i) {
+        const double xs = X[i] == X[i] ? X[i] : 0.0, ys = Y[i] == Y[i] ? Y[i] : 0.0;
+        int x = int(std::floor(xs + 0.5)), y = int(std::floor(ys + 0.5));
+        x = x < 0 ? 0 : (x > Dm ? Dm : x);
+        y = y < 0 ? 0 : (y > Dm ? Dm : y);
+        const uint32_t lit = lim[i] <= double(md_.first(uint32_t(x), uint32_t(y))) ? 1u : 0u;
+        out[i0 + i] = cls[i] == kOpen ? lit : cls[i];
+      }
+      continue;
+    }
     for (size_t i = 0; i < m; ++i) {
       uint32_t r = cls[i];
       if (spot && r != 0 && !(Z[i] > 0 && in_light_cone(light_, {px[i0 + i], py[i0 + i], pz[i0 + i]}))) r = 0;

@@ -42,6 +42,13 @@ class TiledDepths {
     return data_.data() +
            ((size_t(s) << (2 * kMapTileShift)) + ((y & (kMapTile - 1)) << kMapTileShift) + (x & (kMapTile - 1))) * n_;
   }
+  // Texel (x, y)'s first depth (+inf in an empty tile), without a branch.
+  float first(uint32_t x, uint32_t y) const {
+    const uint32_t s = slot_[size_t(y >> kMapTileShift) * tiles_ + (x >> kMapTileShift)];
+    const size_t i =
+        ((size_t(s) << (2 * kMapTileShift)) + ((y & (kMapTile - 1)) << kMapTileShift) + (x & (kMapTile - 1))) * n_;
+    return s == kEmptyTile ? INFINITY : data_[s == kEmptyTile ? 0 : i];
+  }
   // Row y's texels of tile column tx (kMapTile of them; n = 1 maps), or
   // nullptr where that tile is empty.
   const float* row(uint32_t tx, uint32_t y) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include <glm/geometric.hpp>
 
@@ -9,115 +10,80 @@ namespace zs {
 
 namespace {
 
-// glm's order of operations (dot: (x + y) + z; normalize: v·(1/√(v·v))), so
-// the batch gives the bits one-pixel-at-a-time code gives.
 inline double dot3(double ax, double ay, double az, double bx, double by, double bz) {
   return (ax * bx + ay * by) + az * bz;
 }
 
+// Pixels [i0, i1) of the batch, all on the triangle whose set-up
+// coefficients are q[0..17] (num, den, g, m: triangle_shade.h's order): the
+// coefficients stay in registers and the loop runs across the pixels.
 template <bool persp>
-void hit_loop(const View& view, double Y, const double* Ax, const double* Ay, const double* Az, const double* Bx,
-              const double* By, const double* Bz, const double* Cx, const double* Cy, const double* Cz, double* flip,
-              ShadeBatch& b) {
+void hit_run(const View& view, double bY, const double* __restrict q, int i0, int i1, ShadeBatch& b) {
   const glm::dvec3 E = view.eye(), F = view.forward(), R = view.right(), U = view.up();
-  const double sxv = view.scale_x(), syv = view.scale_y(), oxv = view.offset_x(), oyv = view.offset_y();
-  const double bY = (oyv - Y) / syv;
-  for (int i = 0; i < b.n; ++i) {
-    // The pixel's ray (View::ray).
-    const double a = (b.X[i] - oxv) / sxv;
-    double ox, oy, oz, dx, dy, dz, rlf;
+  const double isx = 1.0 / view.scale_x(), ox = view.offset_x();
+  const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3], q4 = q[4], q5 = q[5], q6 = q[6], q7 = q[7], q8 = q[8];
+  const double q9 = q[9], q10 = q[10], q11 = q[11], q12 = q[12], q13 = q[13], q14 = q[14], q15 = q[15], q16 = q[16],
+               q17 = q[17];
+  const double qs[18] = {q0, q1, q2, q3, q4, q5, q6, q7, q8, q9, q10, q11, q12, q13, q14, q15, q16, q17};
+  for (int i = i0; i < i1; ++i) {
+    auto c = [&](int k) { return qs[k]; };
+    const double a = (b.X[i] - ox) * isx;
+    // The exact hit with the triangle's plane (triangle_shade.h); a ray
+    // parallel to it (a sliver seen edge-on) takes the rasterized depth.
+    const double num = c(0) + c(1) * a + c(2) * bY, den = c(3) + c(4) * a + c(5) * bY;
+    const double sh = num / den;
+    const bool good = (den != 0) & (std::abs(sh) < INFINITY);
+    const double s = good ? sh : b.zbuf[i];
+    double px, py, pz;
     if constexpr (persp) {
-      ox = E.x, oy = E.y, oz = E.z;
       const double wx = (F.x + a * R.x) + bY * U.x, wy = (F.y + a * R.y) + bY * U.y, wz = (F.z + a * R.z) + bY * U.z;
+      px = E.x + s * wx, py = E.y + s * wy, pz = E.z + s * wz;
       const double inv = 1.0 / std::sqrt(dot3(wx, wy, wz, wx, wy, wz));
-      dx = wx * inv, dy = wy * inv, dz = wz * inv;
-      rlf = std::sqrt(1.0 + a * a + bY * bY);
+      b.vx[i] = -wx * inv, b.vy[i] = -wy * inv, b.vz[i] = -wz * inv;
     } else {
-      ox = (E.x + a * R.x) + bY * U.x, oy = (E.y + a * R.y) + bY * U.y, oz = (E.z + a * R.z) + bY * U.z;
-      dx = F.x, dy = F.y, dz = F.z;
-      rlf = 1.0;
+      px = ((E.x + a * R.x) + bY * U.x) + s * F.x;
+      py = ((E.y + a * R.y) + bY * U.y) + s * F.y;
+      pz = ((E.z + a * R.z) + bY * U.z) + s * F.z;
+      b.vx[i] = -F.x, b.vy[i] = -F.y, b.vz[i] = -F.z;
     }
-    // The exact hit with the triangle's plane; a ray parallel to it (a sliver
-    // seen edge-on) takes the rasterized depth.
-    const double e1x = Bx[i] - Ax[i], e1y = By[i] - Ay[i], e1z = Bz[i] - Az[i];
-    const double e2x = Cx[i] - Ax[i], e2y = Cy[i] - Ay[i], e2z = Cz[i] - Az[i];
-    const double fx = e1y * e2z - e2y * e1z, fy = e1z * e2x - e2z * e1x, fz = e1x * e2y - e2x * e1y;
-    const double den = dot3(dx, dy, dz, fx, fy, fz);
-    const double th = dot3(Ax[i] - ox, Ay[i] - oy, Az[i] - oz, fx, fy, fz) / den;
-    const bool good = (den != 0) & (std::abs(den) < INFINITY);
-    const double t = good ? th : b.zbuf[i] * rlf;
-    const double px = ox + dx * t, py = oy + dy * t, pz = oz + dz * t;
     b.px[i] = px, b.py[i] = py, b.pz[i] = pz;
-    const double n2 = dot3(fx, fy, fz, fx, fy, fz);
-    const double ig = 1.0 / std::sqrt(n2);
-    double gx = fx * ig, gy = fy * ig, gz = fz * ig;
-    const bool flipped = dot3(gx, gy, gz, dx, dy, dz) > 0;
-    const double fl = flipped ? -1.0 : 1.0;
-    gx *= fl, gy *= fl, gz *= fl;  // −x = −1·x exactly
-    flip[i] = fl;
+    b.depth[i] = s;
+    const double gx = c(6), gy = c(7), gz = c(8);
     b.gx[i] = gx, b.gy[i] = gy, b.gz[i] = gz;
-    b.vx[i] = -dx, b.vy[i] = -dy, b.vz[i] = -dz;
-    b.depth[i] = dot3(px - E.x, py - E.y, pz - E.z, F.x, F.y, F.z);
+    // The shading normal: normalize(m0 + m1·a + m2·b); the face normal
+    // where that is zero or not finite.
+    const double nx = c(9) + c(12) * a + c(15) * bY;
+    const double ny = c(10) + c(13) * a + c(16) * bY;
+    const double nz = c(11) + c(14) * a + c(17) * bY;
+    const double l2 = dot3(nx, ny, nz, nx, ny, nz);
+    const bool ok = (l2 > 0) & (l2 < INFINITY);
+    const double il = 1.0 / std::sqrt(ok ? l2 : 1.0);
+    b.sx[i] = ok ? nx * il : gx, b.sy[i] = ok ? ny * il : gy, b.sz[i] = ok ? nz * il : gz;
     b.diffuse[i] = 0;
     b.specular[i] = 0;
-    b.sx[i] = gx, b.sy[i] = gy, b.sz[i] = gz;
   }
 }
 
 }  // namespace
 
-void surface_hits(const View& view, double Y, const TriangleMesh& mesh, ShadingModel model, ShadeBatch& b) {
+void surface_hits(const View& view, double Y, const TriangleShade* shades, ShadeBatch& b) {
+  // By runs of pixels on one triangle (most pixels of a row continue their
+  // neighbour's triangle).
+  static_assert(offsetof(TriangleShade, num) == 0 && offsetof(TriangleShade, m) == 9 * sizeof(double));
+  const double bY = (view.offset_y() - Y) / view.scale_y();
   const int n = b.n;
-  // Gathered corners (and point normals), one array per coordinate.
-  double Ax[kShadeBatch], Ay[kShadeBatch], Az[kShadeBatch], Bx[kShadeBatch], By[kShadeBatch], Bz[kShadeBatch],
-      Cx[kShadeBatch], Cy[kShadeBatch], Cz[kShadeBatch];
-  double N0[3][kShadeBatch], N1[3][kShadeBatch], N2[3][kShadeBatch];
-  double flip[kShadeBatch];  // −1 where the face's normal was turned to the eye
-  const bool phong = model == ShadingModel::Phong;
-  for (int i = 0; i < n; ++i) {
-    const auto& t = mesh.tris[b.tri[i]];
-    const glm::dvec3 &a = mesh.points[t[0]], &bb = mesh.points[t[1]], &c = mesh.points[t[2]];
-    Ax[i] = a.x, Ay[i] = a.y, Az[i] = a.z;
-    Bx[i] = bb.x, By[i] = bb.y, Bz[i] = bb.z;
-    Cx[i] = c.x, Cy[i] = c.y, Cz[i] = c.z;
-    if (phong)
-      for (int k = 0; k < 3; ++k) {
-        N0[k][i] = mesh.normals[t[0]][k];
-        N1[k][i] = mesh.normals[t[1]][k];
-        N2[k][i] = mesh.normals[t[2]][k];
-      }
-  }
-  if (view.perspective())
-    hit_loop<true>(view, Y, Ax, Ay, Az, Bx, By, Bz, Cx, Cy, Cz, flip, b);
-  else
-    hit_loop<false>(view, Y, Ax, Ay, Az, Bx, By, Bz, Cx, Cy, Cz, flip, b);
-  if (!phong) return;
-  for (int i = 0; i < n; ++i) {
-    // Barycentrics of the hit, clamped into the triangle, weight the normals.
-    const double px = b.px[i], py = b.py[i], pz = b.pz[i];
-    const double e1x = Bx[i] - Ax[i], e1y = By[i] - Ay[i], e1z = Bz[i] - Az[i];
-    const double e2x = Cx[i] - Ax[i], e2y = Cy[i] - Ay[i], e2z = Cz[i] - Az[i];
-    const double fx = e1y * e2z - e2y * e1z, fy = e1z * e2x - e2z * e1x, fz = e1x * e2y - e2x * e1y;
-    const double n2 = dot3(fx, fy, fz, fx, fy, fz);
-    const double bx = Bx[i] - px, by = By[i] - py, bz = Bz[i] - pz;
-    const double cx = Cx[i] - px, cy = Cy[i] - py, cz = Cz[i] - pz;
-    const double ax = Ax[i] - px, ay = Ay[i] - py, az = Az[i] - pz;
-    double wa = dot3(by * cz - cy * bz, bz * cx - cz * bx, bx * cy - cx * by, fx, fy, fz) / n2;
-    double wb = dot3(cy * az - ay * cz, cz * ax - az * cx, cx * ay - ax * cy, fx, fy, fz) / n2;
-    wa = wa < 0.0 ? 0.0 : wa;  // std::clamp's order: NaN stays
-    wa = 1.0 < wa ? 1.0 : wa;
-    wb = wb < 0.0 ? 0.0 : wb;
-    wb = 1.0 - wa < wb ? 1.0 - wa : wb;
-    const double wc = 1.0 - wa - wb;
-    const double nx = (wa * N0[0][i] + wb * N1[0][i]) + wc * N2[0][i];
-    const double ny = (wa * N0[1][i] + wb * N1[1][i]) + wc * N2[1][i];
-    const double nz = (wa * N0[2][i] + wb * N1[2][i]) + wc * N2[2][i];
-    const double len = std::sqrt(dot3(nx, ny, nz, nx, ny, nz));
-    const bool ok = (len > 0) & (len < INFINITY);
-    // Facing the eye like the geometric normal: flipped with it.
-    b.sx[i] = ok ? (flip[i] * nx) / len : b.sx[i];
-    b.sy[i] = ok ? (flip[i] * ny) / len : b.sy[i];
-    b.sz[i] = ok ? (flip[i] * nz) / len : b.sz[i];
+  for (int i0 = 0; i0 < n;) {
+    const uint32_t t = b.tri[i0];
+    int i1 = i0 + 1;
+    while (i1 < n && b.tri[i1] == t) ++i1;
+    const TriangleShade& ts = shades[t];
+    if (view.perspective())
+      hit_run<true>(view, bY, &ts.num[0], i0, i1, b);
+    else
+      hit_run<false>(view, bY, &ts.num[0], i0, i1, b);
+    for (int k = 0; k < 3; ++k)
+      for (int i = i0; i < i1; ++i) b.base[k][i] = ts.color[k];
+    i0 = i1;
   }
 }
 
@@ -171,6 +137,17 @@ void add_lights(const SurfaceShading& sh, const Light& light, const double* lit,
     for (int i = 0; i < n; ++i) pw[i] = w[i] != 0 ? std::pow(nh[i], e) : 0.0;
   }
   for (int i = 0; i < n; ++i) b.specular[i] += w[i] != 0 ? w[i] * pw[i] : 0.0;
+}
+
+void surface_colours(const ShadeBatch& b, double ambient, float rgb[3][kShadeBatch]) {
+  const int n = b.n;
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < n; ++i) {
+      double c = double(b.base[k][i]) * (ambient + b.diffuse[i]) + b.specular[i];
+      c = c < 0.0 ? 0.0 : c;  // std::clamp's order: NaN stays
+      c = 1.0 < c ? 1.0 : c;
+      rgb[k][i] = float(c);
+    }
 }
 
 }  // namespace zs

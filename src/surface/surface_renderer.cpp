@@ -54,6 +54,7 @@ struct SurfaceRenderer::Impl {
   View view;
   TileGrid grid;
   ProjectedTriangles pt;
+  std::vector<TriangleShade> shades;  // per projected triangle
   TriangleBins bins;
   std::vector<ShadowMap> maps;
   std::unique_ptr<ShadowRays> rays;
@@ -87,7 +88,7 @@ struct SurfaceRenderer::Impl {
     uint64_t need = extra_bytes + uint64_t(threads) * tile_px * (kTilePixelBytes + 4 * grid.channels) +
                     relay_queue_tiles(grid, threads) * tile_px * 4 * grid.channels +
                     // projected vertices and corners, bins (estimate: each triangle in ~2 tiles)
-                    mesh.num_points() * sizeof(ScreenVertex) + mesh.num_tris() * (16 + 8);
+                    mesh.num_points() * sizeof(ScreenVertex) + mesh.num_tris() * (16 + 8 + sizeof(TriangleShade));
     if (shadows && !exact) need += L * shadow_map_bytes(rs.shadows) + mesh.num_points() * sizeof(ScreenVertex);
     if (shadows && exact) need += mesh.num_points() * 12 + mesh.num_tris() * 12 * 3;  // vertex/index buffers + BVH
     if (need > budget)
@@ -105,6 +106,7 @@ struct SurfaceRenderer::Impl {
 
     auto t = Clock::now();
     project_triangles(mesh, view, {rs.cull_back, rs.cull_view, z_near}, &pt, &S.project);
+    triangle_shades(mesh, pt.source, view, rs.shading.model, rs.colors, threads, &shades);
     S.ms_project = ms_since(t);
     t = Clock::now();
     bin_triangles(grid, pt.verts, pt.corners, &bins);
@@ -171,7 +173,7 @@ struct SurfaceRenderer::Impl {
           continue;
         }
         b.X[b.n] = double(r.x0 + x);
-        b.tri[b.n] = pt.source[id];
+        b.tri[b.n] = id;
         b.zbuf[b.n] = w.db.depth(p);
         b.pixel[b.n] = uint32_t(p);
         if (++b.n == kShadeBatch) {
@@ -191,7 +193,7 @@ struct SurfaceRenderer::Impl {
     ShadeBatch& b = w.batch;
     const int n = b.n;
     const uint32_t C = grid.channels;
-    surface_hits(view, Y, mesh, rs.shading.model, b);
+    surface_hits(view, Y, shades.data(), b);
     T.rendered_pixels += uint64_t(n);
     double lit[kShadeBatch];
     for (size_t l = 0; l < L; ++l) {
@@ -206,6 +208,9 @@ struct SurfaceRenderer::Impl {
         const double levels = maps[l].levels();
         for (int i = 0; i < n; ++i) lit[i] = double(cnt[i]) / levels;
         T.shadow_tests += uint64_t(n);
+      } else if (light.type == LightType::Directional) {
+        const glm::dvec3 to = to_light(light, glm::dvec3(0.0));
+        for (int i = 0; i < n; ++i) lit[i] = (b.gx[i] * to.x + b.gy[i] * to.y) + b.gz[i] * to.z > 0 ? 1.0 : 0.0;
       } else {
         for (int i = 0; i < n; ++i) {
           const glm::dvec3 p(b.px[i], b.py[i], b.pz[i]), g(b.gx[i], b.gy[i], b.gz[i]);
@@ -218,12 +223,11 @@ struct SurfaceRenderer::Impl {
       }
       add_lights(rs.shading, light, lit, b);
     }
-    const SurfaceShading& sh = rs.shading;
+    float rgb[3][kShadeBatch];
+    surface_colours(b, rs.shading.ambient, rgb);
     for (int i = 0; i < n; ++i) {
       float* o = w.out.data() + size_t(b.pixel[i]) * C;
-      const glm::dvec3& base = rs.colors[mesh.surface[b.tri[i]]];
-      for (int k = 0; k < 3; ++k) o[k] = float(std::clamp(base[k] * (sh.ambient + b.diffuse[i]) + b.specular[i], 0.0, 1.0));
-      o[3] = 1.f;
+      o[0] = rgb[0][i], o[1] = rgb[1][i], o[2] = rgb[2][i], o[3] = 1.f;
       o[4] = float(b.depth[i]);
     }
   }

@@ -1,0 +1,127 @@
+// The surface renderer's per-triangle set-up (surface/triangle_shade.h) and
+// the batch kernel that evaluates it (surface/shade_batch.h), against the
+// closed form computed from scratch per pixel: the ray's hit with the
+// triangle (Möller–Trumbore), its view depth, the barycentric (Phong)
+// normal and the face normal, both turned to the eye.
+#include <cmath>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "surface/shade_batch.h"
+#include "surface/triangle_shade.h"
+
+namespace zs {
+namespace {
+
+struct Expected {
+  bool hit = false;
+  glm::dvec3 p, g, n;
+  double depth = 0;
+};
+
+// Pixel (X, Y)'s ray against triangle t, from scratch.
+Expected closed_form(const TriangleMesh& m, uint32_t t, const View& v, double X, double Y) {
+  glm::dvec3 o, d;
+  v.ray(X, Y, &o, &d);
+  const auto& tri = m.tris[t];
+  const glm::dvec3 A = m.points[tri[0]], B = m.points[tri[1]], C = m.points[tri[2]];
+  const glm::dvec3 e1 = B - A, e2 = C - A, pv = glm::cross(d, e2);
+  const double det = glm::dot(e1, pv);
+  Expected e;
+  if (std::abs(det) < 1e-12) return e;
+  const glm::dvec3 tv = o - A, qv = glm::cross(tv, e1);
+  const double u = glm::dot(tv, pv) / det, w = glm::dot(d, qv) / det, s = glm::dot(e2, qv) / det;
+  // Well inside, so rounding cannot put the pixel on the other side of an edge.
+  if (u < 0.02 || w < 0.02 || u + w > 0.98 || s <= 0) return e;
+  e.hit = true;
+  e.p = o + s * d;
+  e.depth = v.depth(e.p);
+  e.g = glm::normalize(glm::cross(e1, e2));
+  const double fl = glm::dot(e.g, d) > 0 ? -1.0 : 1.0;
+  e.g *= fl;
+  e.n = fl * glm::normalize((1 - u - w) * m.normals[tri[0]] + u * m.normals[tri[1]] + w * m.normals[tri[2]]);
+  return e;
+}
+
+void check_view(const Camera& cam, const glm::dvec3& offset, double scale, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  TriangleMesh m;
+  const int kTris = 40;
+  for (int t = 0; t < kTris; ++t) {
+    const glm::dvec3 c(U(rng), U(rng), U(rng));
+    for (int k = 0; k < 3; ++k) {
+      m.points.push_back(offset + scale * (c + 0.6 * glm::dvec3(U(rng), U(rng), U(rng))));
+      m.normals.push_back(glm::normalize(glm::dvec3(U(rng), U(rng), U(rng)) + glm::dvec3(0, 0, 0.2)));
+    }
+    m.tris.push_back({uint32_t(3 * t), uint32_t(3 * t + 1), uint32_t(3 * t + 2)});
+    m.surface.push_back(0);
+  }
+  const uint32_t W = 48, H = 40;
+  const View v(cam, W, H);
+  int checked = 0;
+  for (ShadingModel model : {ShadingModel::Phong, ShadingModel::Flat}) {
+    for (uint32_t t = 0; t < m.num_tris(); ++t) {
+      const TriangleShade ts = triangle_shade(m, t, v, model, glm::dvec3(0.5, 0.25, 1.0));
+      EXPECT_EQ(ts.color[1], 0.25f);
+      for (uint32_t y = 0; y < H; ++y) {
+        ShadeBatch b;
+        std::vector<Expected> want;
+        for (uint32_t x = 0; x < W && b.n < kShadeBatch; ++x) {
+          const Expected e = closed_form(m, t, v, x, y);
+          if (!e.hit) continue;
+          b.X[b.n] = x, b.zbuf[b.n] = NAN, b.tri[b.n] = 0, b.pixel[b.n] = x;
+          ++b.n;
+          want.push_back(e);
+        }
+        if (b.n == 0) continue;
+        surface_hits(v, double(y), &ts, b);
+        const double tol = 1e-9 * scale + 1e-13 * glm::length(offset);
+        for (int i = 0; i < b.n; ++i) {
+          const Expected& e = want[size_t(i)];
+          EXPECT_NEAR(b.depth[i], e.depth, tol);
+          EXPECT_NEAR(glm::length(glm::dvec3(b.px[i], b.py[i], b.pz[i]) - e.p), 0.0, tol);
+          EXPECT_NEAR(glm::length(glm::dvec3(b.gx[i], b.gy[i], b.gz[i]) - e.g), 0.0, 1e-9);
+          const glm::dvec3 n = model == ShadingModel::Phong ? e.n : e.g;
+          EXPECT_NEAR(glm::length(glm::dvec3(b.sx[i], b.sy[i], b.sz[i]) - n), 0.0, 1e-7);
+          glm::dvec3 o, d;
+          v.ray(double(b.X[i]), double(y), &o, &d);
+          EXPECT_NEAR(glm::length(glm::dvec3(b.vx[i], b.vy[i], b.vz[i]) + d), 0.0, 1e-12);
+          EXPECT_EQ(b.base[2][i], 1.0f);
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 600);  // the triangles cover a good part of the image
+}
+
+TEST(TriangleShade, HitDepthAndNormalsMatchClosedFormPerspective) {
+  Camera cam;
+  cam.projection = Projection::Perspective;
+  cam.eye = {0.7, 1.1, 4.0}, cam.target = {0, 0, 0}, cam.fov_y = 45;
+  check_view(cam, glm::dvec3(0), 1.0, 1);
+}
+
+TEST(TriangleShade, HitDepthAndNormalsMatchClosedFormOrthographic) {
+  Camera cam;
+  cam.projection = Projection::Orthographic;
+  cam.eye = {-2.0, 1.5, 3.0}, cam.target = {0, 0, 0}, cam.height = 3.5;
+  check_view(cam, glm::dvec3(0), 1.0, 2);
+}
+
+TEST(TriangleShade, FarFromTheOriginAndSmall) {
+  // Coordinates 1e5 from the origin, triangles of size 1e-2: the set-up is
+  // taken relative to the triangle and the eye, so the error stays at the
+  // coordinates' own rounding.
+  const glm::dvec3 off(1e5, -2e5, 3e4);
+  Camera cam;
+  cam.projection = Projection::Perspective;
+  cam.eye = off + glm::dvec3(0.007, 0.011, 0.04), cam.target = off, cam.fov_y = 45;
+  check_view(cam, off, 0.01, 3);
+}
+
+}  // namespace
+}  // namespace zs
