@@ -1,6 +1,7 @@
 #include "shadows/sphere_map.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -21,6 +22,7 @@ namespace zs {
 namespace {
 constexpr int kBlocks = int(kMapTile / 8);  // 8×8-texel blocks per tile side
 constexpr uint32_t kOrderBuckets = 64;       // depth slices of a tile's disc order
+constexpr uint32_t kSkipTest = 16;           // discs of a bucket worth testing it whole
 }  // namespace
 
 // A sphere's disc in a map: centre in texels, depth, radius in texels.
@@ -34,6 +36,7 @@ struct SphereDisc {
 struct SphereMapScratch {
   std::vector<SphereDisc> discs, bins;
   std::vector<uint32_t> count, fill;
+  std::vector<double> floor;
 };
 
 ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii,
@@ -78,12 +81,35 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
       for (int tx = x0 >> kMapTileShift; tx <= (x1 >> kMapTileShift); ++tx) fn(uint32_t(ty) * grid.cols() + tx);
   };
   const bool disc_mode = mode == SphereDepth::CentreDisc;
+  auto opaque = [&](uint32_t i) { return !alpha || (*alpha)[i] >= 1.f; };
+  // A tile whose every texel centre lies inside an opaque centre disc (the
+  // four corner centres do: distance to the centre is largest at a corner,
+  // and its rounding is monotone too) starts at that disc's depth instead of
+  // binning it: large spheres (C2's maximal balls cover ~25 tiles of a
+  // 1024² map each) would otherwise be copied into, and read by, every tile
+  // under them. Drawing the disc would give each texel the same minimum.
+  std::vector<double>& floor = sc.floor;
+  floor.assign(grid.count(), INFINITY);
+  auto covers = [&](const Disc& d, uint32_t t) {
+    if (!disc_mode || !opaque(d.id)) return false;
+    const double xa = double((t % grid.cols()) * kMapTile), ya = double((t / grid.cols()) * kMapTile);
+    const double xb = std::min(xa + kMapTile, double(D)) - 1, yb = std::min(ya + kMapTile, double(D)) - 1;
+    const double r2 = d.r * d.r, dxa = xa - d.x, dxb = xb - d.x, dya = ya - d.y, dyb = yb - d.y;
+    return dxa * dxa + dya * dya <= r2 && dxb * dxb + dya * dya <= r2 && dxa * dxa + dyb * dyb <= r2 &&
+           dxb * dxb + dyb * dyb <= r2;
+  };
   for (size_t i = 0; i < centres.size(); ++i) {
     const ViewPoint v = view.project(centres[i]);
-    discs[i] = {v.x, v.y, v.z, radii[i] / texel, uint32_t(i)};
-    if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && discs[i].r > 0)) discs[i].r = -1;  // not drawn
-    if (alpha && !((*alpha)[i] > 0.f)) discs[i].r = -1;  // alpha 0 (or NaN) lets all light through
-    tiles_of(discs[i], [&](uint32_t t) { ++count[t + 1]; });
+    Disc& d = discs[i];
+    d = {v.x, v.y, v.z, radii[i] / texel, uint32_t(i)};
+    if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && d.r > 0)) d.r = -1;  // not drawn
+    if (alpha && !((*alpha)[i] > 0.f)) d.r = -1;  // alpha 0 (or NaN) lets all light through
+    tiles_of(d, [&](uint32_t t) {
+      if (covers(d, t))
+        floor[t] = std::min(floor[t], d.z + 0.0);
+      else
+        ++count[t + 1];
+    });
   }
   for (size_t t = 0; t < grid.count(); ++t) count[t + 1] += count[t];
   // The bins hold copies of the discs, so that a tile reads its own in one
@@ -92,11 +118,13 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
   bins.resize(count.back());
   std::vector<uint32_t>& fill = sc.fill;
   fill.assign(count.begin(), count.end() - 1);
-  for (const Disc& d : discs) tiles_of(d, [&](uint32_t t) { bins[fill[t]++] = d; });
+  for (const Disc& d : discs)
+    tiles_of(d, [&](uint32_t t) {
+      if (!covers(d, t)) bins[fill[t]++] = d;
+    });
 
   // Alpha occluders: 0 < α < 1 goes to the lists, α >= 1 (and every sphere
   // without alpha) to the depths.
-  auto opaque = [&](uint32_t i) { return !alpha || (*alpha)[i] >= 1.f; };
   if (translucent) translucent->reset(D);
   TiledDepths centre;
   centre.reset(D, 1);
@@ -104,7 +132,7 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
   blocks.reset(D);
   std::vector<uint32_t> busy;
   for (uint32_t t = 0; t < grid.count(); ++t)
-    if (count[t + 1] != count[t]) {
+    if (count[t + 1] != count[t] || floor[t] < INFINITY) {
       busy.push_back(t);
       centre.add_tile(t % grid.cols(), t / grid.cols());
     }
@@ -123,8 +151,8 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
   run_tiles(grid, busy, threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
     Work& w = work.local();
     const uint32_t W = r.width(), H = r.height();
-    w.db.assign(size_t(W) * H, INFINITY);
-    std::fill(w.bmax, w.bmax + kBlocks * kBlocks, INFINITY);
+    w.db.assign(size_t(W) * H, floor[t]);
+    std::fill(w.bmax, w.bmax + kBlocks * kBlocks, floor[t]);
     std::fill(w.dirty, w.dirty + kBlocks * kBlocks, false);
     // The farthest depth of block (bx, by), recomputed when written since.
     auto block_far = [&](int bx, int by) {
@@ -138,11 +166,14 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
       }
       return w.bmax[b];
     };
-    // Calls fn(y, xa, xb) for each row y of the tile (tile coordinates) with
-    // the disc's texel centres xa..xb: exactly those with (x−cx)² + (y−cy)²
-    // <= r² (the square root gives the run, the exact test its ends). False
-    // when the disc is nearer than the tile's depths nowhere under its box
-    // (`znear`: its nearest depth): it could change nothing (early-z, §5.4).
+    // Calls fn(y, xa, xb, dy²) for the runs of texel centres xa..xb of each
+    // row y of the tile (tile coordinates) inside the disc: exactly those
+    // with (x−cx)² + (y−cy)² <= r² (the square root gives the run, the exact
+    // test its ends), and only over the 8×8 blocks where the disc is nearer
+    // than the block's farthest depth (`znear`: the disc's nearest depth;
+    // elsewhere it could change nothing: early-z, §5.4, per block). False
+    // when no block under its box is open.
+    static_assert(kBlocks * kBlocks <= 64, "a tile's open blocks fit one 64-bit mask");
     auto rows = [&](const Disc& d, double znear, auto&& fn) {
       const int x0 = std::max(int(r.x0), int(std::ceil(d.x - d.r)));
       const int x1 = std::min(int(r.x1) - 1, int(std::floor(d.x + d.r)));
@@ -151,16 +182,20 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
       if (x0 > x1 || y0 > y1) return false;
       const int bx0 = (x0 - int(r.x0)) >> 3, bx1 = (x1 - int(r.x0)) >> 3;
       const int by0 = (y0 - int(r.y0)) >> 3, by1 = (y1 - int(r.y0)) >> 3;
-      bool open = false;
-      for (int by = by0; by <= by1 && !open; ++by)
-        for (int bx = bx0; bx <= bx1 && !open; ++bx) open = znear < block_far(bx, by);
+      uint64_t open = 0;
+      for (int by = by0; by <= by1; ++by)
+        for (int bx = bx0; bx <= bx1; ++bx)
+          if (znear < block_far(bx, by)) open |= uint64_t(1) << (by * kBlocks + bx);
       if (!open) return false;
+      const bool all_open = std::popcount(open) == (bx1 - bx0 + 1) * (by1 - by0 + 1);  // most small discs
       const double r2 = d.r * d.r;
       auto inside = [&](int x, double dy2) {
         const double dx = x - d.x;
         return dx * dx + dy2 <= r2;
       };
       for (int y = y0; y <= y1; ++y) {
+        const uint64_t row_open = open >> (((y - int(r.y0)) >> 3) * kBlocks);
+        if ((row_open & ((uint64_t(1) << kBlocks) - 1)) == 0) continue;
         const double dy = y - d.y, dy2 = dy * dy;
         const double h = std::sqrt(std::max(0.0, r2 - dy2));
         int xa = std::max(x0, int(std::ceil(d.x - h))), xb = std::min(x1, int(std::floor(d.x + h)));
@@ -169,11 +204,28 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
         while (xb >= xa && !inside(xb, dy2)) --xb;
         while (xb < x1 && xb >= xa && inside(xb + 1, dy2)) ++xb;
         if (xa > xb) continue;
-        fn(y - int(r.y0), xa - int(r.x0), xb - int(r.x0), dy2);
-        w.written += uint64_t(xb - xa + 1);
+        const int ta = xa - int(r.x0), tb = xb - int(r.x0), yt = y - int(r.y0);
+        if (all_open) {
+          fn(yt, ta, tb, dy2);
+          w.written += uint64_t(tb - ta + 1);
+          continue;
+        }
+        // The run cut to its open blocks.
+        for (int b = ta >> 3; b <= (tb >> 3);) {
+          if (!((row_open >> b) & 1)) {
+            ++b;
+            continue;
+          }
+          int e = b;
+          while (e + 1 <= (tb >> 3) && ((row_open >> (e + 1)) & 1)) ++e;
+          const int sa = std::max(ta, b * 8), sb = std::min(tb, e * 8 + 7);
+          fn(yt, sa, sb, dy2);
+          w.written += uint64_t(sb - sa + 1);
+          b = e + 1;
+        }
       }
-      for (int by = by0; by <= by1; ++by)
-        for (int bx = bx0; bx <= bx1; ++bx) w.dirty[by * kBlocks + bx] = true;
+      for (int q = 0; q < kBlocks * kBlocks; ++q)
+        if ((open >> q) & 1) w.dirty[q] = true;
       return true;
     };
     // The disc's depth at texel x of a row (impostor: the front surface,
@@ -194,11 +246,14 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
     }
     const double zs = zhi > zlo ? (kOrderBuckets - 0.5) / (zhi - zlo) : 0.0;
     uint32_t first[kOrderBuckets + 1] = {};
+    double bucket_near[kOrderBuckets];  // the nearest depth of each bucket's discs
+    std::fill(bucket_near, bucket_near + kOrderBuckets, INFINITY);
     w.slot.resize(count[t + 1] - count[t]);
     for (uint32_t k = count[t]; k < count[t + 1]; ++k) {
       const uint32_t b = opaque(bins[k].id) ? uint32_t((nearest(bins[k]) - zlo) * zs) : kOrderBuckets;
       w.slot[k - count[t]] = uint8_t(b);
       ++first[b];
+      if (b < kOrderBuckets) bucket_near[b] = std::min(bucket_near[b], nearest(bins[k]));
     }
     for (uint32_t b = 0, sum = 0; b <= kOrderBuckets; ++b) {
       const uint32_t c = first[b];
@@ -210,17 +265,37 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
       const uint8_t b = w.slot[k - count[t]];
       if (b < kOrderBuckets) w.order[first[b]++] = k;
     }
-    for (const uint32_t k : w.order) {
-      const Disc& d = bins[k];
-      rows(d, nearest(d), [&](int y, int xa, int xb, double dy2) {
-        double* o = w.db.data() + size_t(y) * W;
-        if (disc_mode) {
-          const double z = d.z + 0.0;
-          for (int x = xa; x <= xb; ++x) o[x] = std::min(o[x], z);
-        } else {
-          for (int x = xa; x <= xb; ++x) o[x] = std::min(o[x], depth_at(d, x, dy2));
-        }
-      });
+    // The tile's farthest depth: a bucket whose discs are all at least that
+    // far changes nothing and is skipped without reading its discs (a tile
+    // covered early by large near discs skips most of its list).
+    double far_cached = INFINITY;
+    bool far_stale = true;  // a disc was drawn since far_cached was computed
+    auto tile_far = [&] {
+      if (far_stale) {
+        far_cached = -INFINITY;
+        for (int by = 0; by < kBlocks; ++by)
+          for (int bx = 0; bx < kBlocks; ++bx) far_cached = std::max(far_cached, block_far(bx, by));
+        far_stale = false;
+      }
+      return far_cached;
+    };
+    for (uint32_t b = 0; b < kOrderBuckets; ++b) {
+      const uint32_t k0 = b == 0 ? 0 : first[b - 1], k1 = first[b];
+      // (Checked for buckets large enough to pay for the tile's 64 block
+      // maxima; the discs of a small one are tested one by one anyway.)
+      if (k0 == k1 || (k1 - k0 >= kSkipTest && bucket_near[b] >= tile_far())) continue;
+      for (uint32_t q = k0; q < k1; ++q) {
+        const Disc& d = bins[w.order[q]];
+        far_stale |= rows(d, nearest(d), [&](int y, int xa, int xb, double dy2) {
+          double* o = w.db.data() + size_t(y) * W;
+          if (disc_mode) {
+            const double z = d.z + 0.0;
+            for (int x = xa; x <= xb; ++x) o[x] = std::min(o[x], z);
+          } else {
+            for (int x = xa; x <= xb; ++x) o[x] = std::min(o[x], depth_at(d, x, dy2));
+          }
+        });
+      }
     }
     if (translucent) {
       // Translucent discs in front of the tile's opaque depths: a point

@@ -11,6 +11,7 @@
 
 #include "shadows/ao_directions.h"
 #include "shadows/sphere_map.h"
+#include "shadows/tiled_depths.h"
 #include "shadows/transmittance_lists.h"
 
 namespace zs {
@@ -195,6 +196,52 @@ TEST(SphereAo, AlphaOccludersConvergeToExactTransmittance) {
   for (size_t i = 0; i < set.c.size(); ++i)
     for (const glm::dvec3& n : sp)
       ASSERT_EQ(ambient_occlusion(a, set.c[i] + set.r[i] * n, n), ambient_occlusion(o, set.c[i] + set.r[i] * n, n));
+}
+
+// The centre-disc map texel by texel against the definition: the minimum,
+// over the discs containing the texel centre, of the centre depth rounded up
+// to a float. Large spheres cover whole 64-texel tiles (those start at the
+// covering disc's depth instead of binning it), small ones do not.
+TEST(SphereAo, CentreDiscMapIsTheMinimumOverDiscs) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1, 1), R(0.01, 0.08);
+  Set set;
+  for (int i = 0; i < 300; ++i) {
+    set.c.push_back({U(rng), U(rng), U(rng)});
+    set.r.push_back(i < 12 ? 0.35 + 0.1 * std::abs(U(rng)) : R(rng));  // a few cover several tiles
+  }
+  const uint32_t D = 512;
+  for (int threads : {1, 2}) {
+    const glm::dvec3 dir = glm::normalize(glm::dvec3(0.3, 1.0, -0.4));
+    const ShadowMap m = build_sphere_map(set.c, set.r, dir, D, SphereDepth::CentreDisc, ao_settings(0, 0), threads);
+    const View& v = m.view();
+    std::vector<double> best(size_t(D) * D, INFINITY);
+    std::vector<uint8_t> unsure(size_t(D) * D, 0);
+    for (size_t i = 0; i < set.c.size(); ++i) {
+      const ViewPoint p = v.project(set.c[i]);
+      const double r = set.r[i] * v.scale_x();
+      const int x0 = std::max(0, int(p.x - r) - 1), x1 = std::min(int(D) - 1, int(p.x + r) + 1);
+      const int y0 = std::max(0, int(p.y - r) - 1), y1 = std::min(int(D) - 1, int(p.y + r) + 1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const double dx = x - p.x, dy = y - p.y, d2 = dx * dx + dy * dy;
+          if (std::abs(d2 - r * r) <= 1e-9 * r * r) unsure[size_t(y) * D + x] = 1;  // on the rim
+          if (d2 <= r * r) best[size_t(y) * D + x] = std::min(best[size_t(y) * D + x], p.z);
+        }
+    }
+    uint64_t checked = 0, covered = 0;
+    for (uint32_t y = 0; y < D; ++y)
+      for (uint32_t x = 0; x < D; ++x) {
+        if (unsure[size_t(y) * D + x]) continue;
+        float want;
+        round_depths_up(&best[size_t(y) * D + x], 1, &want);
+        ASSERT_EQ(m.depth(x, y), want) << x << "," << y << " threads " << threads;
+        ++checked;
+        covered += want < INFINITY;
+      }
+    EXPECT_GT(checked, uint64_t(D) * D * 99 / 100);
+    EXPECT_GT(covered, uint64_t(D) * D / 4);
+  }
 }
 
 TEST(SphereAo, BatchesOfDirectionsAddTheSameSums) {
