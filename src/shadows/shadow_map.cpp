@@ -412,6 +412,21 @@ void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const d
       for (size_t i = 0; i < m; ++i)
         prepare<false>(F, light_, px[i0 + i], py[i0 + i], pz[i0 + i], nx[i0 + i], ny[i0 + i], nz[i0 + i], &C[i], &Z[i],
                        &X[i], &Y[i], &lim[i]);
+    if (!spot && levels == 1) {
+      // 1-SM, PCF 1 (the defaults): one texel per point, read directly (a
+      // block's range would cost a read of its own), in a loop without
+      // calls or inner loops (count's arithmetic).
+      for (size_t i = 0; i < m; ++i) {
+        const bool ok = (C[i] > 0) & (X[i] == X[i]) & (Y[i] == Y[i]);
+        const double xs = X[i] == X[i] ? X[i] : 0.0, ys = Y[i] == Y[i] ? Y[i] : 0.0;
+        int x = int(std::floor(xs + 0.5)), y = int(std::floor(ys + 0.5));
+        x = x < 0 ? 0 : (x > Dm ? Dm : x);
+        y = y < 0 ? 0 : (y > Dm ? Dm : y);
+        const uint32_t lit = lim[i] <= double(md_.first(uint32_t(x), uint32_t(y))) ? 1u : 0u;
+        out[i0 + i] = ok ? lit : 0u;
+      }
+      continue;
+    }
     // The blocks decide most points: all pass, all fail, or read the map.
     // The block of the kernel's first (clamped) texel bounds the whole kernel:
     // the blocks were widened by one (8 texels) when it reaches beyond it.
@@ -426,19 +441,6 @@ void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const d
       uint32_t r = lim[i] <= hi ? kOpen : 0u;
       r = lim[i] <= lo ? levels : r;
       cls[i] = ok ? r : 0u;
-    }
-    if (!spot && levels == 1) {
-      // 1-SM, PCF 1 (the defaults): one texel, read for every point in a
-      // loop without calls or inner loops (count's arithmetic).
-      for (size_t i = 0; i < m; ++i) {
-        const double xs = X[i] == X[i] ? X[i] : 0.0, ys = Y[i] == Y[i] ? Y[i] : 0.0;
-        int x = int(std::floor(xs + 0.5)), y = int(std::floor(ys + 0.5));
-        x = x < 0 ? 0 : (x > Dm ? Dm : x);
-        y = y < 0 ? 0 : (y > Dm ? Dm : y);
-        const uint32_t lit = lim[i] <= double(md_.first(uint32_t(x), uint32_t(y))) ? 1u : 0u;
-        out[i0 + i] = cls[i] == kOpen ? lit : cls[i];
-      }
-      continue;
     }
     for (size_t i = 0; i < m; ++i) {
       uint32_t r = cls[i];
