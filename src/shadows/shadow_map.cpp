@@ -416,15 +416,17 @@ void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const d
       // 1-SM, PCF 1 (the defaults): one texel per point, read directly (a
       // block's range would cost a read of its own), in a loop without
       // calls or inner loops (count's arithmetic).
+      const TiledDepths::Reader md = md_.reader();
       for (size_t i = 0; i < m; ++i) {
         const bool ok = (C[i] > 0) & (X[i] == X[i]) & (Y[i] == Y[i]);
         const double xs = X[i] == X[i] ? X[i] : 0.0, ys = Y[i] == Y[i] ? Y[i] : 0.0;
         int x = int(std::floor(xs + 0.5)), y = int(std::floor(ys + 0.5));
         x = x < 0 ? 0 : (x > Dm ? Dm : x);
         y = y < 0 ? 0 : (y > Dm ? Dm : y);
-        const uint32_t lit = lim[i] <= double(md_.first(uint32_t(x), uint32_t(y))) ? 1u : 0u;
-        out[i0 + i] = ok ? lit : 0u;
+        const uint32_t lit = lim[i] <= double(md.at(uint32_t(x), uint32_t(y))) ? 1u : 0u;
+        cls[i] = ok ? lit : 0u;
       }
+      std::copy(cls, cls + m, out + i0);
       continue;
     }
     // The blocks decide most points: all pass, all fail, or read the map.

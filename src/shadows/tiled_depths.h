@@ -42,13 +42,22 @@ class TiledDepths {
     return data_.data() +
            ((size_t(s) << (2 * kMapTileShift)) + ((y & (kMapTile - 1)) << kMapTileShift) + (x & (kMapTile - 1))) * n_;
   }
-  // Texel (x, y)'s first depth (+inf in an empty tile), without a branch.
-  float first(uint32_t x, uint32_t y) const {
-    const uint32_t s = slot_[size_t(y >> kMapTileShift) * tiles_ + (x >> kMapTileShift)];
-    const size_t i =
-        ((size_t(s) << (2 * kMapTileShift)) + ((y & (kMapTile - 1)) << kMapTileShift) + (x & (kMapTile - 1))) * n_;
-    return s == kEmptyTile ? INFINITY : data_[s == kEmptyTile ? 0 : i];
-  }
+  // A 1-depth map's texels as plain pointers, for loops that read many: a
+  // store into an output array cannot alias them (as it could the members),
+  // so nothing is reloaded per texel.
+  struct Reader {
+    const uint32_t* slot;
+    const float* data;
+    uint32_t tiles;
+    // Texel (x, y)'s depth (+inf in an empty tile), without a branch.
+    float at(uint32_t x, uint32_t y) const {
+      const uint32_t s = slot[size_t(y >> kMapTileShift) * tiles + (x >> kMapTileShift)];
+      const size_t i = (size_t(s == kEmptyTile ? 0 : s) << (2 * kMapTileShift)) +
+                       ((y & (kMapTile - 1)) << kMapTileShift) + (x & (kMapTile - 1));
+      return s == kEmptyTile ? INFINITY : data[i];
+    }
+  };
+  Reader reader() const { return {slot_.data(), data_.data(), tiles_}; }  // n = 1 maps only
   // Row y's texels of tile column tx (kMapTile of them; n = 1 maps), or
   // nullptr where that tile is empty.
   const float* row(uint32_t tx, uint32_t y) const {
