@@ -55,6 +55,10 @@ class DepthBuffer {
   double depth(size_t p, uint32_t layer = 0) const { return depth_[size_t(layer) * plane_ + p]; }
   uint32_t id(size_t p, uint32_t layer = 0) const { return id_[size_t(layer) * plane_ + p]; }
   const double* depths() const { return depth_.data(); }  // layer 0, row-major (width·height)
+  // Layer 0's depths and ids for loops that test a whole row (k = 1; the
+  // same rule as test_write).
+  double* front_depths() { return depth_.data(); }
+  uint32_t* front_ids() { return id_.data(); }
 
  private:
   uint32_t width_ = 0, height_ = 0, layers_ = 0;

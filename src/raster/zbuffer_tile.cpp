@@ -48,6 +48,27 @@ void min_row(const ScreenTriangle& st, int32_t y, int32_t x0, int32_t x1, double
   }
 }
 
+// One row of a span depth-tested into d[x0..x1] / id[x0..x1] by
+// DepthBuffer::test_write's rule (nearer, or equal and a smaller or equal
+// id), with min_row's depth, in a branch-free loop; returns the writes.
+template <bool Perspective>
+uint64_t test_row(const ScreenTriangle& st, int32_t y, int32_t x0, int32_t x1, uint32_t t, double* __restrict d,
+                  uint32_t* __restrict id) {
+  const double qy = st.q_gy * (double(y) - st.y0), lo = st.z_lo, hi = st.z_hi;
+  const int32_t m = x1 - x0;
+  uint64_t writes = 0;
+  for (int32_t i = 0; i <= m; ++i) {
+    const double q = st.q_c + st.q_gx * (double(x0 + i) - st.x0) + qy;
+    double z = Perspective ? 1.0 / q : q;
+    z = std::min(std::max(z, lo), hi) + 0.0;
+    const bool win = (z < d[i]) | ((z == d[i]) & (t <= id[i]));
+    d[i] = win ? z : d[i];
+    id[i] = win ? t : id[i];
+    writes += win;
+  }
+  return writes;
+}
+
 }  // namespace
 
 void zbuffer_triangles(const std::vector<ScreenVertex>& verts, const std::vector<std::array<uint32_t, 3>>& corners,
@@ -57,12 +78,11 @@ void zbuffer_triangles(const std::vector<ScreenVertex>& verts, const std::vector
   const size_t w = size_t(vp.x1 - vp.x0);
   scan_triangles(verts, corners, ids, n, perspective, vp, scratch, c,
                  [&](uint32_t t, const ScreenTriangle& st, const RowSpan& r) {
-                   const size_t row = size_t(r.y - vp.y0) * w - size_t(vp.x0);
-                   for (int32_t x = r.x0; x <= r.x1; ++x) {
-                     double z, s;
-                     st.attributes(x, r.y, &z, &s);
-                     c.depth_writes += db.test_write(row + size_t(x), z, t);
-                   }
+                   const size_t at = size_t(r.y - vp.y0) * w + size_t(r.x0 - vp.x0);
+                   double* d = db.front_depths() + at;
+                   uint32_t* id = db.front_ids() + at;
+                   c.depth_writes += perspective ? test_row<true>(st, r.y, r.x0, r.x1, t, d, id)
+                                                 : test_row<false>(st, r.y, r.x0, r.x1, t, d, id);
                  });
   *counts += c;
 }
