@@ -21,16 +21,13 @@ template <bool persp>
 void hit_run(const View& view, double bY, const double* __restrict q, int i0, int i1, ShadeBatch& b) {
   const glm::dvec3 E = view.eye(), F = view.forward(), R = view.right(), U = view.up();
   const double isx = 1.0 / view.scale_x(), ox = view.offset_x();
-  const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3], q4 = q[4], q5 = q[5], q6 = q[6], q7 = q[7], q8 = q[8];
-  const double q9 = q[9], q10 = q[10], q11 = q[11], q12 = q[12], q13 = q[13], q14 = q[14], q15 = q[15], q16 = q[16],
-               q17 = q[17];
-  const double qs[18] = {q0, q1, q2, q3, q4, q5, q6, q7, q8, q9, q10, q11, q12, q13, q14, q15, q16, q17};
+  double c[18];  // a local copy: nothing the loop stores can alias it
+  std::copy(q, q + 18, c);
   for (int i = i0; i < i1; ++i) {
-    auto c = [&](int k) { return qs[k]; };
     const double a = (b.X[i] - ox) * isx;
     // The exact hit with the triangle's plane (triangle_shade.h); a ray
     // parallel to it (a sliver seen edge-on) takes the rasterized depth.
-    const double num = c(0) + c(1) * a + c(2) * bY, den = c(3) + c(4) * a + c(5) * bY;
+    const double num = c[0] + c[1] * a + c[2] * bY, den = c[3] + c[4] * a + c[5] * bY;
     const double sh = num / den;
     const bool good = (den != 0) & (std::abs(sh) < INFINITY);
     const double s = good ? sh : b.zbuf[i];
@@ -48,13 +45,13 @@ void hit_run(const View& view, double bY, const double* __restrict q, int i0, in
     }
     b.px[i] = px, b.py[i] = py, b.pz[i] = pz;
     b.depth[i] = s;
-    const double gx = c(6), gy = c(7), gz = c(8);
+    const double gx = c[6], gy = c[7], gz = c[8];
     b.gx[i] = gx, b.gy[i] = gy, b.gz[i] = gz;
     // The shading normal: normalize(m0 + m1·a + m2·b); the face normal
     // where that is zero or not finite.
-    const double nx = c(9) + c(12) * a + c(15) * bY;
-    const double ny = c(10) + c(13) * a + c(16) * bY;
-    const double nz = c(11) + c(14) * a + c(17) * bY;
+    const double nx = c[9] + c[12] * a + c[15] * bY;
+    const double ny = c[10] + c[13] * a + c[16] * bY;
+    const double nz = c[11] + c[14] * a + c[17] * bY;
     const double l2 = dot3(nx, ny, nz, nx, ny, nz);
     const bool ok = (l2 > 0) & (l2 < INFINITY);
     const double il = 1.0 / std::sqrt(ok ? l2 : 1.0);
