@@ -33,34 +33,39 @@ void scan_triangles(const std::vector<ScreenVertex>& verts, const std::vector<st
   }
 }
 
-// One row of a span, min-merged into d[x0..x1]. The depth is the same
-// expression as ScreenTriangle::attributes with the row's term hoisted, in
-// a branch-free loop the compiler vectorizes.
+// The depth at pixel x of row y (qy = the row's term, hoisted): the same
+// expression as ScreenTriangle::attributes, clamped as it clamps (NaN stays
+// NaN and never wins), −0 stored as +0. Inline in branch-free row loops the
+// compiler vectorizes.
+template <bool Perspective>
+inline double span_depth(const ScreenTriangle& st, double qy, int32_t x) {
+  const double q = st.q_c + st.q_gx * (double(x) - st.x0) + qy;
+  const double z = Perspective ? 1.0 / q : q;
+  return std::min(std::max(z, st.z_lo), st.z_hi) + 0.0;
+}
+
+// One row of a span, min-merged into d[x0..x1].
 template <bool Perspective>
 void min_row(const ScreenTriangle& st, int32_t y, int32_t x0, int32_t x1, double* d) {
-  const double qy = st.q_gy * (double(y) - st.y0), lo = st.z_lo, hi = st.z_hi;
+  const double qy = st.q_gy * (double(y) - st.y0);
   const int32_t m = x1 - x0;
   for (int32_t i = 0; i <= m; ++i) {
-    const double q = st.q_c + st.q_gx * (double(x0 + i) - st.x0) + qy;
-    double z = Perspective ? 1.0 / q : q;
-    z = std::min(std::max(z, lo), hi) + 0.0;  // NaN stays NaN and never wins
+    const double z = span_depth<Perspective>(st, qy, x0 + i);
     d[i] = z < d[i] ? z : d[i];
   }
 }
 
 // One row of a span depth-tested into d[x0..x1] / id[x0..x1] by
 // DepthBuffer::test_write's rule (nearer, or equal and a smaller or equal
-// id), with min_row's depth, in a branch-free loop; returns the writes.
+// id); returns the writes.
 template <bool Perspective>
 uint64_t test_row(const ScreenTriangle& st, int32_t y, int32_t x0, int32_t x1, uint32_t t, double* __restrict d,
                   uint32_t* __restrict id) {
-  const double qy = st.q_gy * (double(y) - st.y0), lo = st.z_lo, hi = st.z_hi;
+  const double qy = st.q_gy * (double(y) - st.y0);
   const int32_t m = x1 - x0;
   uint64_t writes = 0;
   for (int32_t i = 0; i <= m; ++i) {
-    const double q = st.q_c + st.q_gx * (double(x0 + i) - st.x0) + qy;
-    double z = Perspective ? 1.0 / q : q;
-    z = std::min(std::max(z, lo), hi) + 0.0;
+    const double z = span_depth<Perspective>(st, qy, x0 + i);
     const bool win = (z < d[i]) | ((z == d[i]) & (t <= id[i]));
     d[i] = win ? z : d[i];
     id[i] = win ? t : id[i];

@@ -35,12 +35,15 @@ class TiledDepths {
   float* tile(uint32_t tx, uint32_t ty) {
     return data_.data() + size_t(slot_[size_t(ty) * tiles_ + tx]) * kMapTile * kMapTile * n_;
   }
+  // Texel (x, y)'s place in storage slot s, in texels.
+  static size_t index(uint32_t s, uint32_t x, uint32_t y) {
+    return (size_t(s) << (2 * kMapTileShift)) + ((y & (kMapTile - 1)) << kMapTileShift) + (x & (kMapTile - 1));
+  }
   // Texel (x, y)'s n depths (x, y < size).
   const float* texel(uint32_t x, uint32_t y) const {
     const uint32_t s = slot_[size_t(y >> kMapTileShift) * tiles_ + (x >> kMapTileShift)];
     if (s == kEmptyTile) return empty_;
-    return data_.data() +
-           ((size_t(s) << (2 * kMapTileShift)) + ((y & (kMapTile - 1)) << kMapTileShift) + (x & (kMapTile - 1))) * n_;
+    return data_.data() + index(s, x, y) * n_;
   }
   // A 1-depth map's texels as plain pointers, for loops that read many: a
   // store into an output array cannot alias them (as it could the members),
@@ -52,9 +55,7 @@ class TiledDepths {
     // Texel (x, y)'s depth (+inf in an empty tile), without a branch.
     float at(uint32_t x, uint32_t y) const {
       const uint32_t s = slot[size_t(y >> kMapTileShift) * tiles + (x >> kMapTileShift)];
-      const size_t i = (size_t(s == kEmptyTile ? 0 : s) << (2 * kMapTileShift)) +
-                       ((y & (kMapTile - 1)) << kMapTileShift) + (x & (kMapTile - 1));
-      return s == kEmptyTile ? INFINITY : data[i];
+      return s == kEmptyTile ? INFINITY : data[index(s == kEmptyTile ? 0 : s, x, y)];
     }
   };
   Reader reader() const { return {slot_.data(), data_.data(), tiles_}; }  // n = 1 maps only
@@ -63,7 +64,7 @@ class TiledDepths {
   const float* row(uint32_t tx, uint32_t y) const {
     const uint32_t s = slot_[size_t(y >> kMapTileShift) * tiles_ + tx];
     if (s == kEmptyTile) return nullptr;
-    return data_.data() + ((size_t(s) << (2 * kMapTileShift)) + ((y & (kMapTile - 1)) << kMapTileShift)) * n_;
+    return data_.data() + index(s, 0, y) * n_;
   }
   uint64_t bytes() const { return data_.size() * sizeof(float) + slot_.size() * sizeof(uint32_t); }
 
