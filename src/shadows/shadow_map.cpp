@@ -394,61 +394,124 @@ void ShadowMap::lit_counts(size_t n, const double* px, const double* py, const d
   const bool spot = light_.type == LightType::Spot;
   constexpr size_t kChunk = 64;
   double C[kChunk], Z[kChunk], X[kChunk], Y[kChunk], lim[kChunk];
-  uint32_t cls[kChunk];
-  constexpr uint32_t kOpen = 0xffffffffu;
+  for (size_t i0 = 0; i0 < n; i0 += kChunk) {
+    const size_t m = std::min(kChunk, n - i0);
+    if (!spot) {
+      for (size_t i = 0; i < m; ++i) {
+        prepare<false>(F, light_, px[i0 + i], py[i0 + i], pz[i0 + i], nx[i0 + i], ny[i0 + i], nz[i0 + i], &C[i], &Z[i],
+                       &X[i], &Y[i], &lim[i]);
+        lim[i] = C[i] > 0 ? lim[i] : NAN;  // a face turned from the light: no test passes
+      }
+      counts_at(m, X, Y, lim, out + i0);
+      continue;
+    }
+    for (size_t i = 0; i < m; ++i)
+      prepare<true>(F, light_, px[i0 + i], py[i0 + i], pz[i0 + i], nx[i0 + i], ny[i0 + i], nz[i0 + i], &C[i], &Z[i],
+                    &X[i], &Y[i], &lim[i]);
+    for (size_t i = 0; i < m; ++i) lim[i] = C[i] > 0 ? lim[i] : NAN;  // turned from the light: none pass
+    uint32_t cls[kChunk];
+    block_classes(m, X, Y, lim, cls);
+    for (size_t i = 0; i < m; ++i) {
+      uint32_t r = cls[i];
+      if (r != 0 && !(Z[i] > 0 && in_light_cone(light_, {px[i0 + i], py[i0 + i], pz[i0 + i]}))) r = 0;
+      out[i0 + i] = r == kOpenClass ? count(X[i], Y[i], lim[i]) : r;
+    }
+  }
+}
+
+// The blocks decide most points: all pass (levels), all fail (0), or read
+// the map (kOpenClass). The block of the kernel's first (clamped) texel
+// bounds the whole kernel: the blocks were widened by one (8 texels) when it
+// reaches beyond it. A NaN limit passes nothing.
+void ShadowMap::block_classes(size_t m, const double* __restrict X, const double* __restrict Y,
+                              const double* __restrict lim, uint32_t* __restrict cls) const {
   const Kernel k = kernel_of(s_.pcf);
   // floor(X + 0.5) for odd kernels; floor(X + 0) = floor(X) (−0 → +0 converts to the same int).
   const double half = k.odd ? 0.5 : 0.0;
   const int Dm = int(size_) - 1, nb = int(blocks_.blocks);
   const float *bmin = blocks_.min.data(), *bmax = blocks_.max.data();
   const uint32_t levels = levels_;
+  for (size_t i = 0; i < m; ++i) {
+    const bool ok = (X[i] == X[i]) & (Y[i] == Y[i]);
+    double xs = X[i] == X[i] ? X[i] : 0.0, ys = Y[i] == Y[i] ? Y[i] : 0.0;  // no NaN into the int conversion
+    int bx = int(std::floor(xs + half)) + k.first, by = int(std::floor(ys + half)) + k.first;
+    bx = bx < 0 ? 0 : (bx > Dm ? Dm : bx);
+    by = by < 0 ? 0 : (by > Dm ? Dm : by);
+    const int blk = (by >> kDepthBlockShift) * nb + (bx >> kDepthBlockShift);
+    const double lo = bmin[blk], hi = bmax[blk];
+    uint32_t r = lim[i] <= hi ? kOpenClass : 0u;
+    r = lim[i] <= lo ? levels : r;
+    cls[i] = ok ? r : 0u;
+  }
+}
+
+AffineLookup ShadowMap::affine_lookup() const {
+  // prepare<false>: X = ox + sx·(p − e)·r, Y = oy − sy·(p − e)·u, z = (p − e)·f.
+  const LookupFrame& F = frame_;
+  const glm::dvec3 e(F.ex, F.ey, F.ez), r(F.rx, F.ry, F.rz), u(F.ux, F.uy, F.uz), f(F.fx, F.fy, F.fz);
+  AffineLookup A;
+  A.x = F.sx * r, A.x0 = F.ox - F.sx * glm::dot(e, r);
+  A.y = -F.sy * u, A.y0 = F.oy + F.sy * glm::dot(e, u);
+  A.z = f, A.z0 = -glm::dot(e, f);
+  return A;
+}
+
+double ShadowMap::face_bias(double c) const {
+  if (!(c > 0)) return NAN;
+  return bias_of<false>(frame_, 0.0, c);  // the |d| term is the caller's (shadow_map.h)
+}
+
+namespace {
+// Scalar loads beat the vector gathers here (two dependent gathers per point).
+__attribute__((optimize("no-tree-vectorize"))) void read_one(const TiledDepths::Reader& md, size_t m,
+                                                               const uint32_t* tile, const uint32_t* off,
+                                                               const double* lim, uint32_t* out) {
+  for (size_t i = 0; i < m; ++i) {
+    const uint32_t s = md.slot[tile[i]];
+    const float z = s == kEmptyTile ? INFINITY : md.data[(size_t(s) << (2 * kMapTileShift)) + off[i]];
+    out[i] = lim[i] <= double(z) ? 1u : 0u;
+  }
+}
+}  // namespace
+
+void ShadowMap::counts_at(size_t n, const double* X, const double* Y, const double* lim, uint32_t* out) const {
+  const double D8 = frame_.D + 8.0;
+  constexpr size_t kChunk = 64;
+  double Xc[kChunk], Yc[kChunk], Lc[kChunk];  // local copies: the loops below vectorize
+  uint32_t cls[kChunk];
+  const int Dm = int(size_) - 1;
   for (size_t i0 = 0; i0 < n; i0 += kChunk) {
     const size_t m = std::min(kChunk, n - i0);
-    if (spot)
-      for (size_t i = 0; i < m; ++i)
-        prepare<true>(F, light_, px[i0 + i], py[i0 + i], pz[i0 + i], nx[i0 + i], ny[i0 + i], nz[i0 + i], &C[i], &Z[i],
-                      &X[i], &Y[i], &lim[i]);
-    else
-      for (size_t i = 0; i < m; ++i)
-        prepare<false>(F, light_, px[i0 + i], py[i0 + i], pz[i0 + i], nx[i0 + i], ny[i0 + i], nz[i0 + i], &C[i], &Z[i],
-                       &X[i], &Y[i], &lim[i]);
-    if (!spot && levels == 1) {
+    const double *x = X + i0, *y = Y + i0, *l = lim + i0;
+    // Clamped before the int conversion (a point far off the map reads its edge).
+    for (size_t i = 0; i < m; ++i) {
+      Xc[i] = x[i] < -8.0 ? -8.0 : (D8 < x[i] ? D8 : x[i]);  // std::clamp's order: NaN stays
+      Yc[i] = y[i] < -8.0 ? -8.0 : (D8 < y[i] ? D8 : y[i]);
+      Lc[i] = l[i];
+    }
+    if (levels_ == 1) {
       // 1-SM, PCF 1 (the defaults): one texel per point, read directly (a
       // block's range would cost a read of its own), in a loop without
-      // calls or inner loops (count's arithmetic).
+      // calls or inner loops (count's arithmetic). A NaN limit passes no test.
       const TiledDepths::Reader md = md_.reader();
+      uint32_t one[kChunk];
+      uint32_t tile[kChunk], off[kChunk];  // vectorized: the texel's tile and place in it
       for (size_t i = 0; i < m; ++i) {
-        const bool ok = (C[i] > 0) & (X[i] == X[i]) & (Y[i] == Y[i]);
-        const double xs = X[i] == X[i] ? X[i] : 0.0, ys = Y[i] == Y[i] ? Y[i] : 0.0;
-        int x = int(std::floor(xs + 0.5)), y = int(std::floor(ys + 0.5));
-        x = x < 0 ? 0 : (x > Dm ? Dm : x);
-        y = y < 0 ? 0 : (y > Dm ? Dm : y);
-        const uint32_t lit = lim[i] <= double(md.at(uint32_t(x), uint32_t(y))) ? 1u : 0u;
-        cls[i] = ok ? lit : 0u;
+        const bool ok = (Xc[i] == Xc[i]) & (Yc[i] == Yc[i]);
+        const double xs = ok ? Xc[i] : 0.0, ys = ok ? Yc[i] : 0.0;
+        int tx = int(std::floor(xs + 0.5)), ty = int(std::floor(ys + 0.5));
+        tx = tx < 0 ? 0 : (tx > Dm ? Dm : tx);
+        ty = ty < 0 ? 0 : (ty > Dm ? Dm : ty);
+        tile[i] = (uint32_t(ty) >> kMapTileShift) * md.tiles + (uint32_t(tx) >> kMapTileShift);
+        off[i] = uint32_t(TiledDepths::index(0, uint32_t(tx), uint32_t(ty)));
+        Lc[i] = ok ? Lc[i] : NAN;
       }
-      std::copy(cls, cls + m, out + i0);
+      read_one(md, m, tile, off, Lc, one);
+      std::copy(one, one + m, out + i0);
       continue;
     }
-    // The blocks decide most points: all pass, all fail, or read the map.
-    // The block of the kernel's first (clamped) texel bounds the whole kernel:
-    // the blocks were widened by one (8 texels) when it reaches beyond it.
-    for (size_t i = 0; i < m; ++i) {
-      const bool ok = (C[i] > 0) & (X[i] == X[i]) & (Y[i] == Y[i]);
-      double xs = X[i] == X[i] ? X[i] : 0.0, ys = Y[i] == Y[i] ? Y[i] : 0.0;  // no NaN into the int conversion
-      int bx = int(std::floor(xs + half)) + k.first, by = int(std::floor(ys + half)) + k.first;
-      bx = bx < 0 ? 0 : (bx > Dm ? Dm : bx);
-      by = by < 0 ? 0 : (by > Dm ? Dm : by);
-      const int blk = (by >> kDepthBlockShift) * nb + (bx >> kDepthBlockShift);
-      const double lo = bmin[blk], hi = bmax[blk];
-      uint32_t r = lim[i] <= hi ? kOpen : 0u;
-      r = lim[i] <= lo ? levels : r;
-      cls[i] = ok ? r : 0u;
-    }
-    for (size_t i = 0; i < m; ++i) {
-      uint32_t r = cls[i];
-      if (spot && r != 0 && !(Z[i] > 0 && in_light_cone(light_, {px[i0 + i], py[i0 + i], pz[i0 + i]}))) r = 0;
-      out[i0 + i] = r == kOpen ? count(X[i], Y[i], lim[i]) : r;
-    }
+    block_classes(m, Xc, Yc, Lc, cls);
+    for (size_t i = 0; i < m; ++i) out[i0 + i] = cls[i] == kOpenClass ? count(Xc[i], Yc[i], Lc[i]) : cls[i];
   }
 }
 

@@ -68,6 +68,15 @@ struct LookupFrame {
   double bias, slope, texel, reach, D;
 };
 
+// A directional map's lookup inputs as affine functions of the world point
+// p: map column X = x0 + x·p and row Y = y0 + y·p (before clamping), light
+// depth z = z0 + z·p. Callers that know p as a function of something else
+// (a camera pixel) compose these and call counts_at.
+struct AffineLookup {
+  double x0 = 0, y0 = 0, z0 = 0;
+  glm::dvec3 x{0.0}, y{0.0}, z{0.0};
+};
+
 class ShadowMap {
  public:
   // Renders the casters (every triangle, both faces) from `light` on
@@ -95,6 +104,16 @@ class ShadowMap {
   void lit_counts(size_t n, const double* px, const double* py, const double* pz, const double* nx, const double* ny,
                   const double* nz, uint32_t* out) const;
 
+  // Directional maps: the inputs of a lookup as affine functions of p; the
+  // bias's part that depends on the normal alone, at cos θ = c (NaN where
+  // c ≤ 0: the face is turned from the light), so that p's limit is
+  // lim = z − (face_bias(c) + |z|·2^-20) (the header comment's bias_total);
+  // and the lit counts of n points given X, Y and lim (NaN: none lit), the
+  // same counts lit_counts gives for the same inputs.
+  AffineLookup affine_lookup() const;
+  double face_bias(double c) const;
+  void counts_at(size_t n, const double* X, const double* Y, const double* lim, uint32_t* out) const;
+
   // The texel a one-texel kernel reads for p (nearest, clamped to the map)
   // and p's test limit d − bias: what other per-texel data of the map (the
   // sphere AO's translucent lists) need.
@@ -116,6 +135,9 @@ class ShadowMap {
   double bias_for(double d, double cos_theta) const;  // bias_at from p's light depth and |N·L|
   LookupFrame make_frame() const;  // the map's constants for a lookup (finish())
   uint32_t count(double X, double Y, double lim) const;
+  static constexpr uint32_t kOpenClass = 0xffffffffu;  // block_classes: read the kernel
+  void block_classes(size_t m, const double* __restrict X, const double* __restrict Y, const double* __restrict lim,
+                     uint32_t* __restrict cls) const;
   Light light_;
   glm::dvec3 to_light_{0.0};  // directional: unit vector towards the light
   LookupFrame frame_{};

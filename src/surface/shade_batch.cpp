@@ -16,134 +16,210 @@ inline double dot3(double ax, double ay, double az, double bx, double by, double
 
 // Pixels [i0, i1) of the batch, all on the triangle whose set-up
 // coefficients are q[0..17] (num, den, g, m: triangle_shade.h's order): the
-// coefficients stay in registers and the loop runs across the pixels.
-template <bool persp>
-void hit_run(const View& view, double bY, const double* __restrict q, int i0, int i1, ShadeBatch& b) {
+// coefficients stay in registers and the loop runs across the pixels. The
+// unnormalized normal goes to s*, the perspective ray direction to v*, as
+// floats; normalize_vectors finishes them.
+template <bool persp, bool points>
+void hit_run(const View& view, const double* __restrict q, int i0, int i1, ShadeBatch& b) {
   const glm::dvec3 E = view.eye(), F = view.forward(), R = view.right(), U = view.up();
-  const double isx = 1.0 / view.scale_x(), ox = view.offset_x();
+  const double isx = 1.0 / view.scale_x(), ox = view.offset_x(), isy = 1.0 / view.scale_y(), oy = view.offset_y();
   double c[18];  // a local copy: nothing the loop stores can alias it
   std::copy(q, q + 18, c);
   for (int i = i0; i < i1; ++i) {
-    const double a = (b.X[i] - ox) * isx;
+    const double a = (b.X[i] - ox) * isx, bY = (oy - b.Y[i]) * isy;
     // The exact hit with the triangle's plane (triangle_shade.h); a ray
     // parallel to it (a sliver seen edge-on) takes the rasterized depth.
     const double num = c[0] + c[1] * a + c[2] * bY, den = c[3] + c[4] * a + c[5] * bY;
     const double sh = num / den;
     const bool good = (den != 0) & (std::abs(sh) < INFINITY);
     const double s = good ? sh : b.zbuf[i];
-    double px, py, pz;
+    b.ca[i] = a, b.cb[i] = bY, b.depth[i] = s;
     if constexpr (persp) {
       const double wx = (F.x + a * R.x) + bY * U.x, wy = (F.y + a * R.y) + bY * U.y, wz = (F.z + a * R.z) + bY * U.z;
-      px = E.x + s * wx, py = E.y + s * wy, pz = E.z + s * wz;
-      const double inv = 1.0 / std::sqrt(dot3(wx, wy, wz, wx, wy, wz));
-      b.vx[i] = -wx * inv, b.vy[i] = -wy * inv, b.vz[i] = -wz * inv;
-    } else {
-      px = ((E.x + a * R.x) + bY * U.x) + s * F.x;
-      py = ((E.y + a * R.y) + bY * U.y) + s * F.y;
-      pz = ((E.z + a * R.z) + bY * U.z) + s * F.z;
-      b.vx[i] = -F.x, b.vy[i] = -F.y, b.vz[i] = -F.z;
+      if constexpr (points) b.px[i] = E.x + s * wx, b.py[i] = E.y + s * wy, b.pz[i] = E.z + s * wz;
+      b.vx[i] = float(wx), b.vy[i] = float(wy), b.vz[i] = float(wz);
+    } else if constexpr (points) {
+      b.px[i] = ((E.x + a * R.x) + bY * U.x) + s * F.x;
+      b.py[i] = ((E.y + a * R.y) + bY * U.y) + s * F.y;
+      b.pz[i] = ((E.z + a * R.z) + bY * U.z) + s * F.z;
     }
-    b.px[i] = px, b.py[i] = py, b.pz[i] = pz;
-    b.depth[i] = s;
-    const double gx = c[6], gy = c[7], gz = c[8];
-    b.gx[i] = gx, b.gy[i] = gy, b.gz[i] = gz;
-    // The shading normal: normalize(m0 + m1·a + m2·b); the face normal
-    // where that is zero or not finite.
-    const double nx = c[9] + c[12] * a + c[15] * bY;
-    const double ny = c[10] + c[13] * a + c[16] * bY;
-    const double nz = c[11] + c[14] * a + c[17] * bY;
-    const double l2 = dot3(nx, ny, nz, nx, ny, nz);
+    // The shading normal's direction m0 + m1·a + m2·b (in doubles: the sum
+    // cancels where den is small), normalized in floats below.
+    b.sx[i] = float(c[9] + c[12] * a + c[15] * bY);
+    b.sy[i] = float(c[10] + c[13] * a + c[16] * bY);
+    b.sz[i] = float(c[11] + c[14] * a + c[17] * bY);
+  }
+}
+
+// Normalizes the shading normals (the face normal g where the direction is
+// zero or not finite) and turns the ray directions into unit vectors to the
+// eye (orthographic: −F everywhere).
+void normalize_vectors(const View& view, const TriangleShade* shades, ShadeBatch& b) {
+  const int n = b.n;
+  int bad = 0;
+  for (int i = 0; i < n; ++i) {
+    const float nx = b.sx[i], ny = b.sy[i], nz = b.sz[i];
+    const float l2 = (nx * nx + ny * ny) + nz * nz;
     const bool ok = (l2 > 0) & (l2 < INFINITY);
-    const double il = 1.0 / std::sqrt(ok ? l2 : 1.0);
-    b.sx[i] = ok ? nx * il : gx, b.sy[i] = ok ? ny * il : gy, b.sz[i] = ok ? nz * il : gz;
+    const float il = ok ? 1.f / std::sqrt(ok ? l2 : 1.f) : NAN;
+    b.sx[i] = nx * il, b.sy[i] = ny * il, b.sz[i] = nz * il;
+    bad += !ok;
     b.diffuse[i] = 0;
     b.specular[i] = 0;
+  }
+  if (bad)  // rare: a degenerate or overflowing interpolated normal (marked NaN above)
+    for (int i = 0; i < n; ++i)
+      if (b.sx[i] != b.sx[i]) {
+        const double* g = shades[b.tri[i]].g;
+        b.sx[i] = float(g[0]), b.sy[i] = float(g[1]), b.sz[i] = float(g[2]);
+      }
+  if (view.perspective()) {
+    for (int i = 0; i < n; ++i) {
+      const float wx = b.vx[i], wy = b.vy[i], wz = b.vz[i];
+      const float inv = -1.f / std::sqrt((wx * wx + wy * wy) + wz * wz);
+      b.vx[i] = wx * inv, b.vy[i] = wy * inv, b.vz[i] = wz * inv;
+    }
+  } else {
+    const glm::vec3 v = -glm::vec3(view.forward());
+    for (int i = 0; i < n; ++i) b.vx[i] = v.x, b.vy[i] = v.y, b.vz[i] = v.z;
   }
 }
 
 }  // namespace
 
-void surface_hits(const View& view, double Y, const TriangleShade* shades, ShadeBatch& b) {
-  // By runs of pixels on one triangle (most pixels of a row continue their
+void surface_hits(const View& view, const TriangleShade* shades, ShadeBatch& b) {
+  // By runs of pixels on one triangle (most pixels continue their
   // neighbour's triangle).
   static_assert(offsetof(TriangleShade, num) == 0 && offsetof(TriangleShade, m) == 9 * sizeof(double));
-  const double bY = (view.offset_y() - Y) / view.scale_y();
   const int n = b.n;
+  const bool persp = view.perspective();
   for (int i0 = 0; i0 < n;) {
     const uint32_t t = b.tri[i0];
     int i1 = i0 + 1;
     while (i1 < n && b.tri[i1] == t) ++i1;
     const TriangleShade& ts = shades[t];
-    if (view.perspective())
-      hit_run<true>(view, bY, &ts.num[0], i0, i1, b);
+    const double* q = &ts.num[0];
+    if (persp)
+      b.points ? hit_run<true, true>(view, q, i0, i1, b) : hit_run<true, false>(view, q, i0, i1, b);
     else
-      hit_run<false>(view, bY, &ts.num[0], i0, i1, b);
+      b.points ? hit_run<false, true>(view, q, i0, i1, b) : hit_run<false, false>(view, q, i0, i1, b);
     for (int k = 0; k < 3; ++k)
       for (int i = i0; i < i1; ++i) b.base[k][i] = ts.color[k];
     i0 = i1;
   }
+  normalize_vectors(view, shades, b);
 }
 
 namespace {
 
 template <bool spot>
-void light_terms(const SurfaceShading& sh, const glm::dvec3& Ld, const glm::dvec3& P, const double* lit, ShadeBatch& b,
-                 double* nh, double* w) {
-  const double kd = sh.diffuse, ks = sh.specular, Lx = Ld.x, Ly = Ld.y, Lz = Ld.z, Px = P.x, Py = P.y, Pz = P.z;
+void light_terms(const SurfaceShading& sh, const glm::dvec3& Ld, const glm::dvec3& P, const float* lit, ShadeBatch& b,
+                 float* nh, float* w) {
+  const float kd = float(sh.diffuse), ks = float(sh.specular), Lx = float(Ld.x), Ly = float(Ld.y), Lz = float(Ld.z);
+  const double Px = P.x, Py = P.y, Pz = P.z;
   const int n = b.n;
   for (int i = 0; i < n; ++i) {
-    double lx = Lx, ly = Ly, lz = Lz;
+    float lx = Lx, ly = Ly, lz = Lz;
     if constexpr (spot) {  // to_light: normalize(position − p)
       const double qx = Px - b.px[i], qy = Py - b.py[i], qz = Pz - b.pz[i];
       const double inv = 1.0 / std::sqrt(dot3(qx, qy, qz, qx, qy, qz));
-      lx = qx * inv, ly = qy * inv, lz = qz * inv;
+      lx = float(qx * inv), ly = float(qy * inv), lz = float(qz * inv);
     }
-    const double nl = dot3(b.sx[i], b.sy[i], b.sz[i], lx, ly, lz);
+    const float nl = (b.sx[i] * lx + b.sy[i] * ly) + b.sz[i] * lz;
     const bool on = (lit[i] > 0) & (nl > 0);
-    b.diffuse[i] += on ? lit[i] * kd * nl : 0.0;
-    const double hx = lx + b.vx[i], hy = ly + b.vy[i], hz = lz + b.vz[i];
-    const double ih = 1.0 / std::sqrt(dot3(hx, hy, hz, hx, hy, hz));
-    const double c = dot3(b.sx[i], b.sy[i], b.sz[i], hx * ih, hy * ih, hz * ih);
+    b.diffuse[i] += on ? lit[i] * kd * nl : 0.f;
+    const float hx = lx + b.vx[i], hy = ly + b.vy[i], hz = lz + b.vz[i];
+    const float ih = 1.f / std::sqrt((hx * hx + hy * hy) + hz * hz);
+    const float c = ((b.sx[i] * hx + b.sy[i] * hy) + b.sz[i] * hz) * ih;
     nh[i] = c;
-    w[i] = on & (c > 0) & (ks > 0) ? lit[i] * ks : 0.0;
+    w[i] = on & (c > 0) & (ks > 0) ? lit[i] * ks : 0.f;
   }
 }
 
 }  // namespace
 
-void add_lights(const SurfaceShading& sh, const Light& light, const double* lit, ShadeBatch& b) {
+void add_lights(const SurfaceShading& sh, const Light& light, const float* lit, ShadeBatch& b) {
   const int n = b.n;
-  double nh[kShadeBatch], w[kShadeBatch];
+  float nh[kShadeBatch], w[kShadeBatch];
   const glm::dvec3 Ld = to_light(light, glm::dvec3(0.0));
   if (light.type == LightType::Spot)
     light_terms<true>(sh, Ld, light.position, lit, b, nh, w);
   else
     light_terms<false>(sh, Ld, light.position, lit, b, nh, w);
   // nh^shininess (shininess_power: squaring for whole exponents), pixel-parallel.
-  double pw[kShadeBatch];
+  float pw[kShadeBatch];
   const double e = sh.shininess;
   if (e >= 0 && e <= 4096 && e == std::floor(e)) {
-    double base[kShadeBatch];
-    for (int i = 0; i < n; ++i) pw[i] = 1, base[i] = nh[i];
+    // Highlights below 2^-40 are dropped: their powers would leave the
+    // float range's normal numbers (slow on most CPUs) and add nothing seen.
+    const float thr = e > 0 ? float(std::exp2(-40.0 / e)) : 0.f;
+    float base[kShadeBatch];
+    for (int i = 0; i < n; ++i) pw[i] = 1, base[i] = nh[i] >= thr ? nh[i] : 0.f;
     for (unsigned k = unsigned(e); k; k >>= 1) {
       if (k & 1)
         for (int i = 0; i < n; ++i) pw[i] *= base[i];
       for (int i = 0; i < n; ++i) base[i] *= base[i];
     }
   } else {
-    for (int i = 0; i < n; ++i) pw[i] = w[i] != 0 ? std::pow(nh[i], e) : 0.0;
+    const float ef = float(e);
+    for (int i = 0; i < n; ++i) pw[i] = w[i] != 0 ? std::pow(nh[i], ef) : 0.f;
   }
-  for (int i = 0; i < n; ++i) b.specular[i] += w[i] != 0 ? w[i] * pw[i] : 0.0;
+  for (int i = 0; i < n; ++i) b.specular[i] += w[i] != 0 ? w[i] * pw[i] : 0.f;
 }
 
 void surface_colours(const ShadeBatch& b, double ambient, float rgb[3][kShadeBatch]) {
   const int n = b.n;
+  const float am = float(ambient);
   for (int k = 0; k < 3; ++k)
     for (int i = 0; i < n; ++i) {
-      double c = double(b.base[k][i]) * (ambient + b.diffuse[i]) + b.specular[i];
-      c = c < 0.0 ? 0.0 : c;  // std::clamp's order: NaN stays
-      c = 1.0 < c ? 1.0 : c;
-      rgb[k][i] = float(c);
+      float c = b.base[k][i] * (am + b.diffuse[i]) + b.specular[i];
+      c = c < 0.f ? 0.f : c;  // std::clamp's order: NaN stays
+      c = 1.f < c ? 1.f : c;
+      rgb[k][i] = c;
+    }
+}
+
+MapLookup map_lookup(const View& view, const ShadowMap& map, const Light& light,
+                     const std::vector<TriangleShade>& shades) {
+  const glm::dvec3 E = view.eye(), F = view.forward(), R = view.right(), U = view.up();
+  const AffineLookup A = map.affine_lookup();
+  const glm::dvec3 q[3] = {A.x, A.y, A.z};
+  const double q0[3] = {A.x0, A.y0, A.z0};
+  MapLookup M;
+  for (int k = 0; k < 3; ++k) {
+    M.e[k] = q0[k] + glm::dot(q[k], E);
+    M.f[k] = glm::dot(q[k], F), M.r[k] = glm::dot(q[k], R), M.u[k] = glm::dot(q[k], U);
+  }
+  const glm::dvec3 to = to_light(light, glm::dvec3(0.0));
+  M.face_bias.resize(shades.size());
+  for (size_t t = 0; t < shades.size(); ++t) {
+    const double* g = shades[t].g;
+    M.face_bias[t] = map.face_bias(dot3(g[0], g[1], g[2], to.x, to.y, to.z));
+  }
+  return M;
+}
+
+void map_inputs(const MapLookup& M, bool perspective, int n, const double* __restrict ca,
+                const double* __restrict cb, const double* __restrict depth, const uint32_t* __restrict tri,
+                double* __restrict X, double* __restrict Y, double* __restrict lim) {
+  const double* __restrict fb = M.face_bias.data();
+  const double e0 = M.e[0], e1 = M.e[1], e2 = M.e[2], f0 = M.f[0], f1 = M.f[1], f2 = M.f[2];
+  const double r0 = M.r[0], r1 = M.r[1], r2 = M.r[2], u0 = M.u[0], u1 = M.u[1], u2 = M.u[2];
+  if (perspective)
+    for (int i = 0; i < n; ++i) {
+      const double a = ca[i], b = cb[i], s = depth[i];
+      X[i] = e0 + s * ((f0 + a * r0) + b * u0);
+      Y[i] = e1 + s * ((f1 + a * r1) + b * u1);
+      const double z = e2 + s * ((f2 + a * r2) + b * u2);
+      lim[i] = z - (fb[tri[i]] + std::abs(z) * 0x1p-20);  // shadow_map.h's bias_total
+    }
+  else
+    for (int i = 0; i < n; ++i) {
+      const double a = ca[i], b = cb[i], s = depth[i];
+      X[i] = ((e0 + a * r0) + b * u0) + s * f0;
+      Y[i] = ((e1 + a * r1) + b * u1) + s * f1;
+      const double z = ((e2 + a * r2) + b * u2) + s * f2;
+      lim[i] = z - (fb[tri[i]] + std::abs(z) * 0x1p-20);
     }
 }
 

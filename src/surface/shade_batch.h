@@ -1,50 +1,74 @@
-// Shading the covered pixels of a tile row together, as arrays: the hit
-// and normals from each pixel's triangle set-up (triangle_shade.h: one
-// division per pixel, no intersection), Blinn–Phong per light
-// (surface_shading.h), laid out so that the compiler vectorizes it and
-// independent pixels overlap their square roots and divisions. The shadow
-// tests run between the two steps, per light.
+// Shading the covered pixels of a tile together, as arrays: the hit and
+// normals from each pixel's triangle set-up (triangle_shade.h: one division
+// per pixel, no intersection), Blinn–Phong per light (surface_shading.h),
+// laid out so that the compiler vectorizes it and independent pixels overlap
+// their square roots and divisions. Positions and depths are doubles (the
+// shadow tests need them); the unit vectors and the shading are floats (the
+// output's precision), twice as many lanes per instruction. The shadow tests
+// run between the two steps, per light.
 #pragma once
 
 #include <cstdint>
 
+#include <vector>
+
 #include "shadows/light.h"
+#include "shadows/shadow_map.h"
 #include "surface/surface_shading.h"
 #include "surface/triangle_shade.h"
 #include "view/camera.h"
 
 namespace zs {
 
-constexpr int kShadeBatch = 64;
+constexpr int kShadeBatch = 128;
 
 struct ShadeBatch {
   int n = 0;
-  // In: pixel column (row Y is the batch's), the triangle's set-up (index
-  // into the frame's TriangleShade array), rasterized depth, and the pixel's
-  // index in the tile.
-  double X[kShadeBatch], zbuf[kShadeBatch];
+  bool points = false;  // in: also give the hit points (spot lights, shadow rays)
+  // In: pixel column and row, the triangle's set-up (index into the frame's
+  // TriangleShade array), rasterized depth, and the pixel's index in the tile.
+  double X[kShadeBatch], Y[kShadeBatch], zbuf[kShadeBatch];
   uint32_t tri[kShadeBatch], pixel[kShadeBatch];
-  // Out of surface_hits: the hit point, the geometric and shading normals
-  // (unit, facing the eye), the unit vector to the eye and the view depth.
+  // Out of surface_hits: the camera-plane coordinates (triangle_shade.h),
+  // the view depth, the hit point (when `points`), the unit shading normal
+  // (facing the eye) and the unit vector to the eye.
+  double ca[kShadeBatch], cb[kShadeBatch], depth[kShadeBatch];
   double px[kShadeBatch], py[kShadeBatch], pz[kShadeBatch];
-  double gx[kShadeBatch], gy[kShadeBatch], gz[kShadeBatch];
-  double sx[kShadeBatch], sy[kShadeBatch], sz[kShadeBatch];
-  double vx[kShadeBatch], vy[kShadeBatch], vz[kShadeBatch];
-  double depth[kShadeBatch];
+  float sx[kShadeBatch], sy[kShadeBatch], sz[kShadeBatch];
+  float vx[kShadeBatch], vy[kShadeBatch], vz[kShadeBatch];
   float base[3][kShadeBatch];  // the surface's colour
   // Accumulated by add_lights.
-  double diffuse[kShadeBatch], specular[kShadeBatch];
+  float diffuse[kShadeBatch], specular[kShadeBatch];
 };
 
-// Hit points and normals of the batch's pixels on row Y; zeroes the sums.
-void surface_hits(const View& view, double Y, const TriangleShade* shades, ShadeBatch& b);
+// Hit points and normals of the batch's pixels; zeroes the sums.
+void surface_hits(const View& view, const TriangleShade* shades, ShadeBatch& b);
 
 // Adds one light's diffuse and specular terms, scaled by each pixel's lit
 // fraction (add_light of surface_shading.h, pixel by pixel).
-void add_lights(const SurfaceShading& sh, const Light& light, const double* lit, ShadeBatch& b);
+void add_lights(const SurfaceShading& sh, const Light& light, const float* lit, ShadeBatch& b);
 
 // The pixels' colours, base·(ambient + diffuse) + specular clamped to
 // [0, 1] (surface_shading.h's surface_colour), per channel.
 void surface_colours(const ShadeBatch& b, double ambient, float rgb[3][kShadeBatch]);
+
+// A directional light's map lookup as functions of the pixel's camera-plane
+// coordinates (a, b) and view depth s, so a pixel needs no world point: with
+// p = E + s·w, w = F + a·R + b·U (perspective) or p = E + a·R + b·U + s·F,
+// an affine Q(p) (ShadowMap::affine_lookup) is QE + s·(QF + a·QR + b·QU) or
+// QE + a·QR + b·QU + s·QF. The bias's normal part is per triangle (its
+// face normal g).
+struct MapLookup {
+  double e[3], f[3], r[3], u[3];  // QE, QF, QR, QU for Q = map column X, row Y, light depth z
+  std::vector<double> face_bias;  // per TriangleShade; NaN: turned from the light
+};
+MapLookup map_lookup(const View& view, const ShadowMap& map, const Light& light,
+                     const std::vector<TriangleShade>& shades);
+
+// The map column X, row Y and test limit lim = z − bias_total (shadow_map.h)
+// of n pixels, for ShadowMap::counts_at.
+void map_inputs(const MapLookup& M, bool perspective, int n, const double* __restrict ca,
+                const double* __restrict cb, const double* __restrict depth, const uint32_t* __restrict tri,
+                double* __restrict X, double* __restrict Y, double* __restrict lim);
 
 }  // namespace zs

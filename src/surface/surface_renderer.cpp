@@ -64,6 +64,7 @@ struct SurfaceRenderer::Impl {
   tbb::enumerable_thread_specific<TileState> states;
   glm::dvec3 bg_rgb{0.0};
   double bg_a = 0;
+  bool any_spot = false;
 
   Impl(const TriangleMesh& m, const SurfaceRenderSettings& settings, uint64_t extra_bytes)
       : mesh(m), rs(settings), view(settings.camera, settings.width, settings.height) {
@@ -134,13 +135,25 @@ struct SurfaceRenderer::Impl {
       rays = std::make_unique<ShadowRays>(mesh, threads);
       S.ms_rays_build = rays->ms_build();
     }
+    for (const Light& l : rs.lights) any_spot |= l.type == LightType::Spot;
+    if (!maps.empty()) make_lookups();
     S.ms_shadows = ms_since(t);
     bg_rgb = glm::dvec3(rs.background[0], rs.background[1], rs.background[2]);
     bg_a = rs.background[3];
     S.ms_setup = ms_since(t_start);
   }
 
-  // One tile: z-buffer, then each covered pixel resolved once.
+  std::vector<MapLookup> lookups;  // per light (directional lights with a map)
+
+  void make_lookups() {
+    lookups.resize(maps.size());
+    for (size_t l = 0; l < maps.size(); ++l)
+      if (rs.lights[l].type == LightType::Directional)
+        lookups[l] = map_lookup(view, maps[l], rs.lights[l], shades);
+  }
+
+  // One tile: z-buffer, then each covered pixel resolved once, in batches
+  // of kShadeBatch pixels across rows.
   const float* render_tile(uint32_t tile, const TileRect& r) {
     const auto t0 = Clock::now();
     TileState& w = states.local();
@@ -158,68 +171,85 @@ struct SurfaceRenderer::Impl {
     w.out.resize(size_t(tw) * th * C);
     const size_t L = rs.lights.size();
     ShadeBatch& b = w.batch;
+    b.n = 0;
+    b.points = rays != nullptr || any_spot;
+    const float bg[4] = {float(bg_rgb.x), float(bg_rgb.y), float(bg_rgb.z), float(bg_a)};
     for (uint32_t y = 0; y < th; ++y) {
-      b.n = 0;
+      const double Y = double(r.y0 + y);
       for (uint32_t x = 0; x < tw; ++x) {
         const size_t p = size_t(y) * tw + x;
         const uint32_t id = w.db.id(p);
         if (id == kNoId) {
           float* o = w.out.data() + p * C;
-          o[0] = float(bg_rgb.x);
-          o[1] = float(bg_rgb.y);
-          o[2] = float(bg_rgb.z);
-          o[3] = float(bg_a);
+          for (int c = 0; c < 4; ++c) o[c] = bg[c];
           for (uint32_t c = 4; c < C; ++c) o[c] = INFINITY;
           continue;
         }
-        b.X[b.n] = double(r.x0 + x);
-        b.tri[b.n] = id;
-        b.zbuf[b.n] = w.db.depth(p);
-        b.pixel[b.n] = uint32_t(p);
+        const int i = b.n;
+        b.X[i] = double(r.x0 + x);
+        b.Y[i] = Y;
+        b.tri[i] = id;
+        b.zbuf[i] = w.db.depth(p);
+        b.pixel[i] = uint32_t(p);
         if (++b.n == kShadeBatch) {
-          shade(double(r.y0 + y), w, T, L);
+          shade(w, T, L);
           b.n = 0;
         }
       }
-      if (b.n) shade(double(r.y0 + y), w, T, L);
     }
+    if (b.n) shade(w, T, L);
     T.ms_tiles += ms_since(t0);
     return w.out.data();
   }
 
-  // The batch's pixels on row Y: hits and normals, each light's lit fraction
-  // (map lookups, shadow rays, or only the cone and facing), Blinn–Phong.
-  void shade(double Y, TileState& w, SurfaceTileTotals& T, size_t L) const {
+  // The batch's pixels: hits and normals, each light's lit fraction (map
+  // lookups, shadow rays, or only the cone and facing), Blinn–Phong.
+  void shade(TileState& w, SurfaceTileTotals& T, size_t L) const {
     ShadeBatch& b = w.batch;
     const int n = b.n;
     const uint32_t C = grid.channels;
-    surface_hits(view, Y, shades.data(), b);
+    surface_hits(view, shades.data(), b);
     T.rendered_pixels += uint64_t(n);
-    double lit[kShadeBatch];
+    float lit[kShadeBatch];
     for (size_t l = 0; l < L; ++l) {
       const Light& light = rs.lights[l];
       if (shadows && rays) {
-        for (int i = 0; i < n; ++i)
-          lit[i] = rays->lit(light, {b.px[i], b.py[i], b.pz[i]}, {b.gx[i], b.gy[i], b.gz[i]}) ? 1.0 : 0.0;
+        for (int i = 0; i < n; ++i) {
+          const double* g = shades[b.tri[i]].g;
+          lit[i] = rays->lit(light, {b.px[i], b.py[i], b.pz[i]}, {g[0], g[1], g[2]}) ? 1.f : 0.f;
+        }
         T.shadow_rays += uint64_t(n);
       } else if (shadows) {
         uint32_t cnt[kShadeBatch];
-        maps[l].lit_counts(size_t(n), b.px, b.py, b.pz, b.gx, b.gy, b.gz, cnt);
-        const double levels = maps[l].levels();
-        for (int i = 0; i < n; ++i) lit[i] = double(cnt[i]) / levels;
+        if (light.type == LightType::Directional)
+          directional_counts(l, b, cnt);
+        else {
+          double gx[kShadeBatch], gy[kShadeBatch], gz[kShadeBatch];
+          for (int i = 0; i < n; ++i) {
+            const double* g = shades[b.tri[i]].g;
+            gx[i] = g[0], gy[i] = g[1], gz[i] = g[2];
+          }
+          maps[l].lit_counts(size_t(n), b.px, b.py, b.pz, gx, gy, gz, cnt);
+        }
+        const float levels = float(maps[l].levels());
+        for (int i = 0; i < n; ++i) lit[i] = float(cnt[i]) / levels;  // all levels: exactly 1
         T.shadow_tests += uint64_t(n);
       } else if (light.type == LightType::Directional) {
         const glm::dvec3 to = to_light(light, glm::dvec3(0.0));
-        for (int i = 0; i < n; ++i) lit[i] = (b.gx[i] * to.x + b.gy[i] * to.y) + b.gz[i] * to.z > 0 ? 1.0 : 0.0;
+        for (int i = 0; i < n; ++i) {
+          const double* g = shades[b.tri[i]].g;
+          lit[i] = (g[0] * to.x + g[1] * to.y) + g[2] * to.z > 0 ? 1.f : 0.f;
+        }
       } else {
         for (int i = 0; i < n; ++i) {
-          const glm::dvec3 p(b.px[i], b.py[i], b.pz[i]), g(b.gx[i], b.gy[i], b.gz[i]);
-          lit[i] = in_light_cone(light, p) && glm::dot(g, to_light(light, p)) > 0 ? 1.0 : 0.0;
+          const double* g = shades[b.tri[i]].g;
+          const glm::dvec3 p(b.px[i], b.py[i], b.pz[i]);
+          lit[i] = in_light_cone(light, p) && glm::dot(glm::dvec3(g[0], g[1], g[2]), to_light(light, p)) > 0 ? 1.f : 0.f;
         }
       }
       for (int i = 0; i < n; ++i) {
         T.lit_pixels += lit[i] > 0;
-        w.out[size_t(b.pixel[i]) * C + 5 + l] = float(lit[i]);
+        w.out[size_t(b.pixel[i]) * C + 5 + l] = lit[i];
       }
       add_lights(rs.shading, light, lit, b);
     }
@@ -230,6 +260,14 @@ struct SurfaceRenderer::Impl {
       o[0] = rgb[0][i], o[1] = rgb[1][i], o[2] = rgb[2][i], o[3] = 1.f;
       o[4] = float(b.depth[i]);
     }
+  }
+
+  // Light l's lit counts (a directional map) from the pixels' camera-plane
+  // coordinates and depths.
+  void directional_counts(size_t l, const ShadeBatch& b, uint32_t* cnt) const {
+    double X[kShadeBatch], Y[kShadeBatch], lim[kShadeBatch];
+    map_inputs(lookups[l], view.perspective(), b.n, b.ca, b.cb, b.depth, b.tri, X, Y, lim);
+    maps[l].counts_at(size_t(b.n), X, Y, lim, cnt);
   }
 };
 

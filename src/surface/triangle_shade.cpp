@@ -62,6 +62,17 @@ TriangleShade triangle_shade(const TriangleMesh& mesh, uint32_t t, const View& v
     const glm::dvec3 mj = -(dj * Nc + Wa[j] * (Na - Nc) + Wb[j] * (Nb - Nc));
     for (int k = 0; k < 3; ++k) s.m[j][k] = mj[k];
   }
+  // Scaled so that the direction is about unit length over the triangle (1
+  // at its centroid): the pixels normalize it in floats, whose squares
+  // would leave their range for scenes of large coordinates.
+  const glm::dvec3 G = (A - E) + ((B - A) + (C - A)) / 3.0;
+  const double ga_ = persp ? dot(G, R) / dot(G, F) : dot(G, R), gb_ = persp ? dot(G, U) / dot(G, F) : dot(G, U);
+  glm::dvec3 M;
+  for (int k = 0; k < 3; ++k) M[k] = s.m[0][k] + s.m[1][k] * ga_ + s.m[2][k] * gb_;
+  const double len = std::sqrt(dot(M, M));
+  if (len > 0 && len < INFINITY)
+    for (auto& row : s.m)
+      for (double& v : row) v /= len;
   return s;
 }
 

@@ -27,7 +27,7 @@ namespace zs {
 struct TriangleShade {
   double num[3], den[3];  // view depth = (num0 + num1·a + num2·b)/(den0 + den1·a + den2·b)
   double g[3];            // unit face normal, turned to the eye
-  double m[3][3];         // m[j]: coefficient of (1, a, b)[j] of the shading normal (unnormalized)
+  double m[3][3];         // m[j]: coefficient of (1, a, b)[j] of the shading normal (unit at the centroid)
   float color[3];
 };
 

@@ -1,6 +1,8 @@
 // The shadow-map module (src/shadows/): the digest's step-edge table, level
 // counts of PCF(k, n), the fixed patterns, the bias on tilted receivers.
+#include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <set>
 #include <string>
@@ -308,7 +310,53 @@ TEST(ShadowMaps, EarlyOutsAndBatchGiveTheDirectCounts) {
       std::vector<uint32_t> batch(direct.size());
       m.lit_counts(direct.size(), px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(), batch.data());
       EXPECT_EQ(batch, direct);
+      // The same tests from the affine lookup (what the surface renderer
+      // composes with its view): column, row and limit from p.
+      const AffineLookup A = m.affine_lookup();
+      const double fb = m.face_bias(glm::dot(kFacing, -down_z().direction));
+      std::vector<double> X, Y, lim;
+      for (size_t i = 0; i < px.size(); ++i) {
+        const glm::dvec3 p(px[i], py[i], pz[i]);
+        X.push_back(A.x0 + glm::dot(A.x, p)), Y.push_back(A.y0 + glm::dot(A.y, p));
+        const double zl = A.z0 + glm::dot(A.z, p);
+        lim.push_back(zl - (fb + std::abs(zl) * 0x1p-20));
+      }
+      std::vector<uint32_t> affine(direct.size());
+      m.counts_at(direct.size(), X.data(), Y.data(), lim.data(), affine.data());
+      EXPECT_EQ(affine, direct) << "n " << c.n << " k " << k;
     }
+  // A face turned from the light has no bias: none of its tests pass.
+  const ShadowMap m = ShadowMap::from_depths(down_z(), map_frame(), D, z, settings(1, DepthSelect::Max, 1, 0.01));
+  EXPECT_TRUE(std::isnan(m.face_bias(0.0)));
+  EXPECT_TRUE(std::isnan(m.face_bias(-0.5)));
+  const double X = 1, Y = 1, lim = NAN;
+  uint32_t out = 7;
+  m.counts_at(1, &X, &Y, &lim, &out);
+  EXPECT_EQ(out, 0u);
+}
+
+// round_depths_up is float(z) moved one ulp up where it fell below z, bit
+// for bit (it works on the bits so that it vectorizes).
+TEST(ShadowMaps, DepthsRoundUpLikeNextafter) {
+  std::vector<double> z = {0.0, -0.0, 1e-320, -1e-320, 1e-46, -1e-46, 1.4e-45, -1.4e-45, 1.0, -1.0, 0.1, -0.1,
+                           double(FLT_MAX), -double(FLT_MAX), double(FLT_MAX) * (1 + 1e-12),
+                           -double(FLT_MAX) * (1 + 1e-12), 1e39, -1e39, INFINITY, -INFINITY, NAN,
+                           double(FLT_MIN), double(FLT_MIN) * (1 - 1e-9), -double(FLT_MIN) * (1 - 1e-9)};
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (int i = 0; i < 4000; ++i) z.push_back(U(rng) * std::pow(10.0, 40 * U(rng)));
+  std::vector<float> out(z.size());
+  const uint64_t covered = round_depths_up(z.data(), z.size(), out.data());
+  uint64_t want_covered = 0;
+  for (size_t i = 0; i < z.size(); ++i) {
+    float f = float(z[i]);
+    if (double(f) < z[i]) f = std::nextafter(f, INFINITY);
+    uint32_t a, b;
+    std::memcpy(&a, &out[i], 4), std::memcpy(&b, &f, 4);
+    EXPECT_EQ(a, b) << "z " << z[i];
+    want_covered += z[i] < INFINITY;
+  }
+  EXPECT_EQ(covered, want_covered);
 }
 
 // The tiled n-SM gives build_multi_depth's dense result at every texel: empty
