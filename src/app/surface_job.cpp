@@ -63,6 +63,7 @@ nlohmann::json SurfaceJob::stats(const TiledRenderer& r, const FrameReport& f) c
                     {"multi_depth_ms", m.ms_multi_depth},
                     {"casters", m.casters},
                     {"casters_culled", m.casters_culled},
+                    {"casters_back_faces", m.casters_back_faces},
                     {"caster_fragments", m.caster_fragments},
                     {"texels_covered", m.texels_covered},
                     {"bytes", m.bytes},

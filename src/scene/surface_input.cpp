@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "surfaces/closed_solids.h"
 #include "surfaces/io/surface_reader.h"
 
 namespace zs {
@@ -50,6 +51,7 @@ void load_surfaces(SceneInput& in, const std::map<std::string, TriangleMesh>* da
     append_mesh(all, g, uint32_t(ss.surfaces.size()));
   }
   compute_point_normals(all);
+  all.solid = closed_solid_sides(all);
   in.surface = std::move(all);
 }
 

@@ -228,6 +228,15 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   ProjectCounts pc;
   std::vector<uint8_t> skip;
   if (s.cull_casters && !scene.empty) skip = non_casters(casters, light, scene, diag, &st.casters_culled);
+  if (s.cull_casters && light.type == LightType::Directional && casters.solid.size() == casters.num_tris()) {
+    if (skip.empty()) skip.assign(casters.num_tris(), 0);
+    for (size_t t = 0; t < casters.num_tris(); ++t)
+      if (!skip[t] && casters.solid[t] != 0 &&
+          double(casters.solid[t]) * glm::dot(face_normal(casters, t), light.direction) > 0) {
+        skip[t] = 1;
+        ++st.casters_back_faces;
+      }
+  }
   project_triangles(casters, *m.view_, {false, true, z_near, skip.empty() ? nullptr : &skip}, &pt, &pc);
   const TileGrid grid{D, D, kMapTile, 1};
   TriangleBins bins;

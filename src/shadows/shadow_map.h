@@ -52,6 +52,7 @@ struct ShadowMapStats {
   double ms_project = 0, ms_raster = 0, ms_multi_depth = 0;
   uint64_t casters = 0;         // triangles projected into the map
   uint64_t casters_culled = 0;  // left out: they can shadow no point (ShadowSettings::cull_casters)
+  uint64_t casters_back_faces = 0;  // left out: faces of closed solids turned from a directional light
   uint64_t caster_fragments = 0;
   uint64_t texels_covered = 0;  // texels with a caster
   uint64_t bytes = 0;           // the map and its n-SM

@@ -23,7 +23,10 @@ struct ShadowSettings {
   uint32_t pcf = 1;           // k: 1, 4, 9 or 16 texels
   ShadowMode mode = ShadowMode::Map;
   // Leave out of the maps the triangles that can shadow nothing: the whole
-  // scene lies on their light side (shadow_map.h). Exact; off only to measure.
+  // scene lies on their light side (shadow_map.h); and, for directional
+  // lights, the faces of closed solids turned from the light (the nearest
+  // caster along a light ray is never one: surfaces/closed_solids.h). Exact
+  // up to ties at texel centres on a solid's silhouette; off only to measure.
   bool cull_casters = true;
 };
 

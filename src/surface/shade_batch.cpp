@@ -20,12 +20,14 @@ inline double dot3(double ax, double ay, double az, double bx, double by, double
 // unnormalized normal goes to s*, the perspective ray direction to v*, as
 // floats; normalize_vectors finishes them.
 template <bool persp, bool points>
-void hit_run(const View& view, const double* __restrict q, int i0, int i1, ShadeBatch& b) {
+void hit_run(const View& view, const TriangleShade& ts, int i0, int i1, ShadeBatch& b) {
   const glm::dvec3 E = view.eye(), F = view.forward(), R = view.right(), U = view.up();
   const double isx = 1.0 / view.scale_x(), ox = view.offset_x(), isy = 1.0 / view.scale_y(), oy = view.offset_y();
   double c[18];  // a local copy: nothing the loop stores can alias it
-  std::copy(q, q + 18, c);
+  std::copy(&ts.num[0], &ts.num[0] + 18, c);
+  const float cr = ts.color[0], cg = ts.color[1], cbl = ts.color[2];
   for (int i = i0; i < i1; ++i) {
+    b.base[0][i] = cr, b.base[1][i] = cg, b.base[2][i] = cbl;
     const double a = (b.X[i] - ox) * isx, bY = (oy - b.Y[i]) * isy;
     // The exact hit with the triangle's plane (triangle_shade.h); a ray
     // parallel to it (a sliver seen edge-on) takes the rasterized depth.
@@ -98,13 +100,10 @@ void surface_hits(const View& view, const TriangleShade* shades, ShadeBatch& b) 
     int i1 = i0 + 1;
     while (i1 < n && b.tri[i1] == t) ++i1;
     const TriangleShade& ts = shades[t];
-    const double* q = &ts.num[0];
     if (persp)
-      b.points ? hit_run<true, true>(view, q, i0, i1, b) : hit_run<true, false>(view, q, i0, i1, b);
+      b.points ? hit_run<true, true>(view, ts, i0, i1, b) : hit_run<true, false>(view, ts, i0, i1, b);
     else
-      b.points ? hit_run<false, true>(view, q, i0, i1, b) : hit_run<false, false>(view, q, i0, i1, b);
-    for (int k = 0; k < 3; ++k)
-      for (int i = i0; i < i1; ++i) b.base[k][i] = ts.color[k];
+      b.points ? hit_run<false, true>(view, ts, i0, i1, b) : hit_run<false, false>(view, ts, i0, i1, b);
     i0 = i1;
   }
   normalize_vectors(view, shades, b);

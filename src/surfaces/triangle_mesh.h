@@ -22,6 +22,9 @@ struct TriangleMesh {
   std::vector<std::array<uint32_t, 3>> tris;
   std::vector<uint32_t> surface;     // per triangle; index into the scene's surfaces (ground: last)
   std::vector<glm::dvec3> normals;   // per point: area-weighted, unit (zero where undefined)
+  // Per triangle, closed_solid_sides (surfaces/closed_solids.h); empty when
+  // not worked out (nothing is then assumed closed).
+  std::vector<int8_t> solid;
 
   size_t num_points() const { return points.size(); }
   size_t num_tris() const { return tris.size(); }
