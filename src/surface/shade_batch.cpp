@@ -22,13 +22,14 @@ inline double dot3(double ax, double ay, double az, double bx, double by, double
 template <bool persp, bool points>
 void hit_run(const View& view, const TriangleShade& ts, int i0, int i1, ShadeBatch& b) {
   const glm::dvec3 E = view.eye(), F = view.forward(), R = view.right(), U = view.up();
-  const double isx = 1.0 / view.scale_x(), ox = view.offset_x(), isy = 1.0 / view.scale_y(), oy = view.offset_y();
+  const double isx = 1.0 / view.scale_x(), ox = view.offset_x();
+  const double bY = (view.offset_y() - b.Y) / view.scale_y();
   double c[18];  // a local copy: nothing the loop stores can alias it
   std::copy(&ts.num[0], &ts.num[0] + 18, c);
   const float cr = ts.color[0], cg = ts.color[1], cbl = ts.color[2];
   for (int i = i0; i < i1; ++i) {
     b.base[0][i] = cr, b.base[1][i] = cg, b.base[2][i] = cbl;
-    const double a = (b.X[i] - ox) * isx, bY = (oy - b.Y[i]) * isy;
+    const double a = (b.X[i] - ox) * isx;
     // The exact hit with the triangle's plane (triangle_shade.h); a ray
     // parallel to it (a sliver seen edge-on) takes the rasterized depth.
     const double num = c[0] + c[1] * a + c[2] * bY, den = c[3] + c[4] * a + c[5] * bY;
@@ -96,9 +97,13 @@ void surface_hits(const View& view, const TriangleShade* shades, ShadeBatch& b) 
   const int n = b.n;
   const bool persp = view.perspective();
   for (int i0 = 0; i0 < n;) {
-    const uint32_t t = b.tri[i0];
+    const uint32_t t = b.id[i0];
     int i1 = i0 + 1;
-    while (i1 < n && b.tri[i1] == t) ++i1;
+    while (i1 < n && b.id[i1] == t) ++i1;
+    if (t == kNoShade) {
+      i0 = i1;
+      continue;
+    }
     const TriangleShade& ts = shades[t];
     if (persp)
       b.points ? hit_run<true, true>(view, ts, i0, i1, b) : hit_run<true, false>(view, ts, i0, i1, b);

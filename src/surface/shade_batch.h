@@ -1,4 +1,4 @@
-// Shading the covered pixels of a tile together, as arrays: the hit and
+// Shading a tile row's pixels together, as arrays: the hit and
 // normals from each pixel's triangle set-up (triangle_shade.h: one division
 // per pixel, no intersection), Blinn–Phong per light (surface_shading.h),
 // laid out so that the compiler vectorizes it and independent pixels overlap
@@ -20,15 +20,20 @@
 
 namespace zs {
 
-constexpr int kShadeBatch = 128;
+constexpr int kShadeBatch = 64;
+constexpr uint32_t kNoShade = 0xffffffffu;  // a pixel no triangle covers (the z-buffer's kNoId)
 
 struct ShadeBatch {
   int n = 0;
   bool points = false;  // in: also give the hit points (spot lights, shadow rays)
-  // In: pixel column and row, the triangle's set-up (index into the frame's
-  // TriangleShade array), rasterized depth, and the pixel's index in the tile.
-  double X[kShadeBatch], Y[kShadeBatch], zbuf[kShadeBatch];
-  uint32_t tri[kShadeBatch], pixel[kShadeBatch];
+  // In: consecutive pixels of row Y: their columns, their triangles' set-ups
+  // (index into the frame's TriangleShade array; kNoShade where none: the
+  // background, which every step passes over or computes and drops) and
+  // rasterized depths. `tri` is `id` with 0 for kNoShade, an index that is
+  // safe to read through.
+  double Y = 0;
+  double X[kShadeBatch], zbuf[kShadeBatch];
+  uint32_t id[kShadeBatch], tri[kShadeBatch];
   // Out of surface_hits: the camera-plane coordinates (triangle_shade.h),
   // the view depth, the hit point (when `points`), the unit shading normal
   // (facing the eye) and the unit vector to the eye.
@@ -41,7 +46,7 @@ struct ShadeBatch {
   float diffuse[kShadeBatch], specular[kShadeBatch];
 };
 
-// Hit points and normals of the batch's pixels; zeroes the sums.
+// Hit points and normals of the batch's covered pixels; zeroes the sums.
 void surface_hits(const View& view, const TriangleShade* shades, ShadeBatch& b);
 
 // Adds one light's diffuse and specular terms, scaled by each pixel's lit

@@ -28,10 +28,13 @@ double ms_since(Clock::time_point t) { return std::chrono::duration<double, std:
 struct TileState {
   DepthBuffer db;
   ShadeBatch batch;
+  std::vector<float> lit;  // lights × kShadeBatch
   ZBufferScratch scratch;
   std::vector<float> out;
   SurfaceTileTotals totals;
 };
+
+static_assert(kNoShade == kNoId, "the shading batch takes the z-buffer's ids as they are");
 
 // Per-pixel state of a tile: depth (8) + id (4) + the output floats.
 constexpr uint64_t kTilePixelBytes = 12;
@@ -152,8 +155,8 @@ struct SurfaceRenderer::Impl {
         lookups[l] = map_lookup(view, maps[l], rs.lights[l], shades);
   }
 
-  // One tile: z-buffer, then each covered pixel resolved once, in batches
-  // of kShadeBatch pixels across rows.
+  // One tile: z-buffer, then each covered pixel resolved once, a row (up to
+  // kShadeBatch pixels of it) at a time.
   const float* render_tile(uint32_t tile, const TileRect& r) {
     const auto t0 = Clock::now();
     TileState& w = states.local();
@@ -171,54 +174,64 @@ struct SurfaceRenderer::Impl {
     w.out.resize(size_t(tw) * th * C);
     const size_t L = rs.lights.size();
     ShadeBatch& b = w.batch;
-    b.n = 0;
     b.points = rays != nullptr || any_spot;
-    const float bg[4] = {float(bg_rgb.x), float(bg_rgb.y), float(bg_rgb.z), float(bg_a)};
-    for (uint32_t y = 0; y < th; ++y) {
-      const double Y = double(r.y0 + y);
-      for (uint32_t x = 0; x < tw; ++x) {
-        const size_t p = size_t(y) * tw + x;
-        const uint32_t id = w.db.id(p);
-        if (id == kNoId) {
-          float* o = w.out.data() + p * C;
-          for (int c = 0; c < 4; ++c) o[c] = bg[c];
-          for (uint32_t c = 4; c < C; ++c) o[c] = INFINITY;
-          continue;
+    w.lit.resize(std::max<size_t>(1, L) * kShadeBatch);
+    for (uint32_t y = 0; y < th; ++y)
+      for (uint32_t x0 = 0; x0 < tw; x0 += kShadeBatch) {
+        // A run of up to kShadeBatch pixels of row y: the batch is the row's
+        // ids and depths as they are (the background included), so no pass
+        // gathers covered pixels and the output is written in order.
+        const size_t p0 = size_t(y) * tw + x0;
+        const int n = int(std::min<uint32_t>(kShadeBatch, tw - x0));
+        const uint32_t* ids = w.db.front_ids() + p0;
+        const double* zs = w.db.front_depths() + p0;
+        b.n = n;
+        b.Y = double(r.y0 + y);
+        int covered = 0;
+        for (int i = 0; i < n; ++i) {
+          b.X[i] = double(r.x0 + x0 + uint32_t(i));
+          b.id[i] = ids[i];
+          b.tri[i] = ids[i] == kNoShade ? 0u : ids[i];
+          b.zbuf[i] = zs[i];
+          covered += ids[i] != kNoShade;
         }
-        const int i = b.n;
-        b.X[i] = double(r.x0 + x);
-        b.Y[i] = Y;
-        b.tri[i] = id;
-        b.zbuf[i] = w.db.depth(p);
-        b.pixel[i] = uint32_t(p);
-        if (++b.n == kShadeBatch) {
-          shade(w, T, L);
-          b.n = 0;
-        }
+        float* o = w.out.data() + p0 * C;
+        if (covered == 0)
+          write_background(n, C, o);
+        else
+          shade(w, T, L, covered, o);
       }
-    }
-    if (b.n) shade(w, T, L);
     T.ms_tiles += ms_since(t0);
     return w.out.data();
   }
 
-  // The batch's pixels: hits and normals, each light's lit fraction (map
-  // lookups, shadow rays, or only the cone and facing), Blinn–Phong.
-  void shade(TileState& w, SurfaceTileTotals& T, size_t L) const {
+  void write_background(int n, uint32_t C, float* o) const {
+    const float bg[4] = {float(bg_rgb.x), float(bg_rgb.y), float(bg_rgb.z), float(bg_a)};
+    for (int i = 0; i < n; ++i, o += C) {
+      for (int c = 0; c < 4; ++c) o[c] = bg[c];
+      for (uint32_t c = 4; c < C; ++c) o[c] = INFINITY;
+    }
+  }
+
+  // The batch's pixels (`covered` of them have a triangle): hits and normals,
+  // each light's lit fraction (map lookups, shadow rays, or only the cone and
+  // facing), Blinn–Phong; written to `o` (the row's first pixel).
+  void shade(TileState& w, SurfaceTileTotals& T, size_t L, int covered, float* o) const {
     ShadeBatch& b = w.batch;
     const int n = b.n;
     const uint32_t C = grid.channels;
     surface_hits(view, shades.data(), b);
-    T.rendered_pixels += uint64_t(n);
-    float lit[kShadeBatch];
+    T.rendered_pixels += uint64_t(covered);
+    float* lits = w.lit.data();  // L × kShadeBatch
     for (size_t l = 0; l < L; ++l) {
       const Light& light = rs.lights[l];
+      float* lit = lits + l * kShadeBatch;
       if (shadows && rays) {
         for (int i = 0; i < n; ++i) {
           const double* g = shades[b.tri[i]].g;
-          lit[i] = rays->lit(light, {b.px[i], b.py[i], b.pz[i]}, {g[0], g[1], g[2]}) ? 1.f : 0.f;
+          lit[i] = b.id[i] != kNoShade && rays->lit(light, {b.px[i], b.py[i], b.pz[i]}, {g[0], g[1], g[2]}) ? 1.f : 0.f;
         }
-        T.shadow_rays += uint64_t(n);
+        T.shadow_rays += uint64_t(covered);
       } else if (shadows) {
         uint32_t cnt[kShadeBatch];
         if (light.type == LightType::Directional)
@@ -233,7 +246,7 @@ struct SurfaceRenderer::Impl {
         }
         const float levels = float(maps[l].levels());
         for (int i = 0; i < n; ++i) lit[i] = float(cnt[i]) / levels;  // all levels: exactly 1
-        T.shadow_tests += uint64_t(n);
+        T.shadow_tests += uint64_t(covered);
       } else if (light.type == LightType::Directional) {
         const glm::dvec3 to = to_light(light, glm::dvec3(0.0));
         for (int i = 0; i < n; ++i) {
@@ -244,21 +257,41 @@ struct SurfaceRenderer::Impl {
         for (int i = 0; i < n; ++i) {
           const double* g = shades[b.tri[i]].g;
           const glm::dvec3 p(b.px[i], b.py[i], b.pz[i]);
-          lit[i] = in_light_cone(light, p) && glm::dot(glm::dvec3(g[0], g[1], g[2]), to_light(light, p)) > 0 ? 1.f : 0.f;
+          lit[i] = b.id[i] != kNoShade && in_light_cone(light, p) &&
+                           glm::dot(glm::dvec3(g[0], g[1], g[2]), to_light(light, p)) > 0
+                       ? 1.f
+                       : 0.f;
         }
       }
-      for (int i = 0; i < n; ++i) {
-        T.lit_pixels += lit[i] > 0;
-        w.out[size_t(b.pixel[i]) * C + 5 + l] = lit[i];
-      }
+      for (int i = 0; i < n; ++i) T.lit_pixels += (lit[i] > 0) & (b.id[i] != kNoShade);
       add_lights(rs.shading, light, lit, b);
     }
     float rgb[3][kShadeBatch];
     surface_colours(b, rs.shading.ambient, rgb);
+    const float bg[4] = {float(bg_rgb.x), float(bg_rgb.y), float(bg_rgb.z), float(bg_a)};
+    if (C == 6)
+      write_pixels<6>(b, rgb, lits, bg, C, o);
+    else
+      write_pixels<0>(b, rgb, lits, bg, C, o);
+  }
+
+  // The output of the batch's pixels, in order: colour, alpha 1, depth and
+  // each light's lit fraction, or the background (depth and lit +inf).
+  // Kc = C when known at compile time (one light: the stores vectorize).
+  template <uint32_t Kc>
+  static void write_pixels(const ShadeBatch& b, const float (*rgb)[kShadeBatch], const float* lits, const float* bg,
+                           uint32_t Cr, float* __restrict o) {
+    const uint32_t C = Kc ? Kc : Cr;
+    const int n = b.n;
     for (int i = 0; i < n; ++i) {
-      float* o = w.out.data() + size_t(b.pixel[i]) * C;
-      o[0] = rgb[0][i], o[1] = rgb[1][i], o[2] = rgb[2][i], o[3] = 1.f;
-      o[4] = float(b.depth[i]);
+      const bool none = b.id[i] == kNoShade;
+      float* q = o + size_t(i) * C;
+      q[0] = none ? bg[0] : rgb[0][i];
+      q[1] = none ? bg[1] : rgb[1][i];
+      q[2] = none ? bg[2] : rgb[2][i];
+      q[3] = none ? bg[3] : 1.f;
+      q[4] = none ? INFINITY : float(b.depth[i]);
+      for (uint32_t c = 5; c < C; ++c) q[c] = none ? INFINITY : lits[size_t(c - 5) * kShadeBatch + i];
     }
   }
 

@@ -69,11 +69,12 @@ void check_view(const Camera& cam, const glm::dvec3& offset, double scale, uint3
       for (uint32_t y = 0; y < H; ++y) {
         ShadeBatch b;
         b.points = true;
+        b.Y = double(y);
         std::vector<Expected> want;
         for (uint32_t x = 0; x < W && b.n < kShadeBatch; ++x) {
           const Expected e = closed_form(m, t, v, x, y);
           if (!e.hit) continue;
-          b.X[b.n] = x, b.Y[b.n] = y, b.zbuf[b.n] = NAN, b.tri[b.n] = 0, b.pixel[b.n] = x;
+          b.X[b.n] = x, b.zbuf[b.n] = NAN, b.id[b.n] = 0, b.tri[b.n] = 0;
           ++b.n;
           want.push_back(e);
         }
