@@ -27,16 +27,30 @@ void visible_region_points(const TriangleMesh& m, const View& view, double z_nea
   glm::dvec3 a[9], b[9];
   for (size_t t = 0; t < m.num_tris(); ++t) {
     int n = 3;
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3 d = m.points[m.tris[t][k]] - eye;
-      a[k] = {glm::dot(d, r), glm::dot(d, u), glm::dot(d, f)};
-    }
     if (cull_back) {
       // Back-facing: the eye is behind the triangle's plane (world space:
       // the camera basis r, u, f is left-handed).
       const glm::dvec3 nrm = face_normal(m, t);
       const double s = persp ? glm::dot(nrm, eye - m.points[m.tris[t][0]]) : -glm::dot(nrm, f);
       if (!(s > 0)) continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 d = m.points[m.tris[t][k]] - eye;
+      a[k] = {glm::dot(d, r), glm::dot(d, u), glm::dot(d, f)};
+    }
+    // Most triangles lie wholly inside every plane (their own points are the
+    // region's) or wholly outside one (nothing); only the rest are clipped.
+    bool inside = true, outside = false;
+    for (const Plane& pl : planes) {
+      int in = 0;
+      for (int k = 0; k < 3; ++k) in += pl.a * a[k].x + pl.b * a[k].y + pl.c * a[k].z + pl.d >= 0;
+      inside &= in == 3;
+      outside |= in == 0;
+    }
+    if (outside) continue;
+    if (inside) {
+      for (int k = 0; k < 3; ++k) point(m.points[m.tris[t][k]]);
+      continue;
     }
     for (const Plane& pl : planes) {
       int o = 0;
