@@ -49,6 +49,10 @@ class SceneJob {
   virtual nlohmann::json stats(const TiledRenderer& r, const FrameReport& f) const = 0;
   virtual std::string summary(const TiledRenderer& r, double total_ms) const = 0;
   virtual std::string empty_reason(const TiledRenderer& r) const = 0;
+  // The output keeps R, G, B and A only (an 8-bit file): a job may leave its
+  // other channels out of the frames (surfaces: Z and lit, whose stores are a
+  // good part of a frame); the others' writers drop them.
+  virtual void keep_rgba_only() {}
   // Whether render_frames makes the next frame's renderer before it frees
   // the previous one (more memory for a moment; the allocator then hands the
   // same pages back instead of faulting fresh ones in).

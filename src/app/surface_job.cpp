@@ -15,6 +15,11 @@ class SurfaceJob : public SceneJob {
     grid_ = TileGrid{rs_.width, rs_.height, rs_.tile_size, uint32_t(5 + rs_.lights.size())};
     names_ = surface_channel_names(rs_.lights.size());
   }
+  void keep_rgba_only() override {
+    rs_.depth_and_lit = false;
+    grid_.channels = 4;
+    names_ = {"R", "G", "B", "A"};
+  }
   std::unique_ptr<TiledRenderer> renderer(uint64_t extra_bytes, bool progress) override {
     rs_.progress = progress;
     return std::make_unique<SurfaceRenderer>(in_.surface, rs_, held_ + extra_bytes);

@@ -44,6 +44,7 @@ void render_to_file(SceneInput& in, const std::string& out_path, const std::stri
     in.scene.settings.face_area_stats = !stats_path.empty();
   }
   std::unique_ptr<SceneJob> job = make_scene_job(in, no_culling);
+  if (!ImageTileWriter::keeps_extra_channels(out_path)) job->keep_rgba_only();
   const TileGrid& grid = job->grid();
   // The budget before the output opens: the file library allocates its tile
   // tables then (2 GiB for a 1048576² EXR), and an image the format cannot

@@ -361,6 +361,12 @@ uint64_t ImageTileWriter::buffer_bytes_estimate(const std::string& path, const T
   return estimate_bytes(layout_for(*file, path, grid), grid);
 }
 
+bool ImageTileWriter::keeps_extra_channels(const std::string& path) {
+  auto file = create_output(path);
+  const std::string fmt = file->format_name();
+  return fmt == "openexr" || fmt == "tiff";  // layout_for's float formats
+}
+
 uint64_t ImageTileWriter::peak_buffer_bytes() const { return impl_->peak; }
 bool ImageTileWriter::tiled() const { return impl_->layout.tiled; }
 void ImageTileWriter::commit() { impl_->commit(); }

@@ -47,6 +47,9 @@ class ImageTileWriter : public TileSink {
   // tables; also rejects an image the format cannot hold. Throws
   // std::runtime_error naming the file.
   static uint64_t buffer_bytes_estimate(const std::string& path, const TileGrid& grid);
+  // Whether `path`'s format stores the channels past RGBA (EXR and TIFF:
+  // float; the 8-bit formats keep R, G, B, A only). Nothing is opened.
+  static bool keeps_extra_channels(const std::string& path);
   // The most it actually held (band buffers; tiled formats hold none).
   uint64_t peak_buffer_bytes() const;
   // True when written as a tiled file, false when in scanline bands.

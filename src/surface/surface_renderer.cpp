@@ -78,7 +78,7 @@ struct SurfaceRenderer::Impl {
     for (uint32_t s : mesh.surface)
       if (s >= rs.colors.size()) throw std::runtime_error("surface renderer: a triangle's surface has no colour");
     const size_t L = rs.lights.size();
-    grid = TileGrid{rs.width, rs.height, rs.tile_size, uint32_t(5 + L)};
+    grid = TileGrid{rs.width, rs.height, rs.tile_size, rs.depth_and_lit ? uint32_t(5 + L) : 4u};
     if (uint64_t(grid.cols()) * grid.rows() >= (uint64_t(1) << 32))
       throw std::runtime_error("too many tiles; use a larger tile size");
     const int threads = std::max(1, rs.threads);
@@ -269,10 +269,25 @@ struct SurfaceRenderer::Impl {
     float rgb[3][kShadeBatch];
     surface_colours(b, rs.shading.ambient, rgb);
     const float bg[4] = {float(bg_rgb.x), float(bg_rgb.y), float(bg_rgb.z), float(bg_a)};
-    if (C == 6)
+    if (C == 4)
+      write_rgba(b, rgb, bg, o);
+    else if (C == 6)
       write_pixels<6>(b, rgb, lits, bg, C, o);
     else
       write_pixels<0>(b, rgb, lits, bg, C, o);
+  }
+
+  // The RGBA-only output (SurfaceRenderSettings::depth_and_lit off): four
+  // floats a pixel, which the compiler stores as whole vectors.
+  __attribute__((optimize("no-tree-vectorize"))) static void write_rgba(const ShadeBatch& b, const float (*rgb)[kShadeBatch], const float* bg, float* __restrict o) {
+    const int n = b.n;
+    for (int i = 0; i < n; ++i) {
+      const bool none = b.id[i] == kNoShade;
+      o[4 * i] = none ? bg[0] : rgb[0][i];
+      o[4 * i + 1] = none ? bg[1] : rgb[1][i];
+      o[4 * i + 2] = none ? bg[2] : rgb[2][i];
+      o[4 * i + 3] = none ? bg[3] : 1.f;
+    }
   }
 
   // The output of the batch's pixels, in order: colour, alpha 1, depth and

@@ -26,6 +26,9 @@ struct SurfaceRenderSettings {
   SurfaceShading shading;
   ShadowSettings shadows;
   bool shadows_enabled = true;
+  // The Z and lit channels of the tiles (off: R, G, B, A only, for outputs
+  // that keep no more; the same colours either way).
+  bool depth_and_lit = true;
   uint64_t memory_budget_bytes = 0;  // 0: none
   bool progress = false;
 };

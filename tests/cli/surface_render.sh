@@ -49,6 +49,19 @@ S
   "$zsweep" render "$tmp/$mode.json" -o "$tmp/$mode.exr" --threads 2 >/dev/null 2>"$tmp/err" \
     || { echo "FAIL render $mode: $(cat "$tmp/err")"; fail=1; }
 done
+# An 8-bit output: the frames carry R, G, B, A only, the same colours as the EXR's.
+"$zsweep" render "$tmp/map.json" -o "$tmp/map.png" --threads 2 >/dev/null 2>"$tmp/err" \
+  || { echo "FAIL render png: $(cat "$tmp/err")"; fail=1; }
+$py - "$tmp/map.exr" "$tmp/map.png" <<'PY' || fail=1
+import sys
+import numpy as np, OpenImageIO as oiio
+e = oiio.ImageBuf(sys.argv[1]).get_pixels(oiio.FLOAT)[:, :, :4]
+p = oiio.ImageBuf(sys.argv[2]).get_pixels(oiio.UINT8).astype(np.float64)
+d = np.abs(p - np.clip(e, 0, 1) * 255).max()
+ok = p.shape == e.shape and d <= 0.5 + 1e-3
+if not ok: print("FAIL png vs exr colours", p.shape, e.shape, d)
+sys.exit(0 if ok else 1)
+PY
 $py - "$tmp/map.exr" "$tmp/exact.exr" <<'PY' || fail=1
 import sys
 import numpy as np, OpenImageIO as oiio

@@ -429,5 +429,38 @@ TEST(Surfaces, ThreadsAndTilesGiveBitIdenticalImages) {
   }
 }
 
+TEST(Surfaces, RgbaOnlyTilesHoldTheSameColours) {
+  // depth_and_lit off (8-bit outputs): four channels, the same RGBA bits.
+  TriangleMesh m = cube();
+  TriangleMesh ground;
+  ground.points = {{-3, 0, -3}, {4, 0, -3}, {4, 0, 4}, {-3, 0, 4}};
+  ground.tris = {{0, 2, 1}, {0, 3, 2}};
+  for (glm::dvec3& p : m.points) p += glm::dvec3(0, 0.3, 0);
+  append_mesh(m, ground, 1);
+  compute_point_normals(m);
+  Camera cam;
+  cam.projection = Projection::Perspective;
+  cam.eye = {3, 4, 5};
+  cam.target = {0.5, 0.3, 0.5};
+  cam.fov_y = 45;
+  std::vector<float> rgba[2];
+  for (int only = 0; only < 2; ++only) {
+    SurfaceRenderSettings s = settings_for(cam, 100, 77, 2);
+    s.background = {0.1, 0.2, 0.3, 0.5};
+    s.lights = {Light{}};
+    s.shadows.map_size = 256;
+    s.depth_and_lit = only == 0;
+    SurfaceRenderer r(m, s);
+    EXPECT_EQ(r.grid().channels, only ? 4u : 6u);
+    ImageSink sink(r.grid());
+    r.render_tiles(sink, nullptr);
+    rgba[only].assign(sink.image.rgba.begin(), sink.image.rgba.end());
+    EXPECT_GT(r.stats().tiles.rendered_pixels, 1000u);
+    EXPECT_LT(r.stats().tiles.rendered_pixels, 7700u);  // the background shows too
+  }
+  ASSERT_EQ(rgba[0].size(), rgba[1].size());
+  EXPECT_EQ(0, std::memcmp(rgba[0].data(), rgba[1].data(), rgba[0].size() * sizeof(float)));
+}
+
 }  // namespace
 }  // namespace zs
