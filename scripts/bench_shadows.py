@@ -115,13 +115,15 @@ def args_parse(argv):
 
 # ---------------------------------------------------------------- running zsweep
 
-def render(a, tag, scene, frames=1, keep=True):
-    """Run `zsweep render` on `scene` (dict), one thread; (stats, exr path)."""
+def render(a, tag, scene, frames=1, keep=True, ext="exr"):
+    """Run `zsweep render` on `scene` (dict), one thread; (stats, image path).
+    EXR keeps Z and lit0.. (the error measures read them); PNG is RGBA only,
+    which zsweep then leaves out of its frames (as VTK's frames hold RGBA)."""
     for sub in ("scenes", "stats", "images"):
         os.makedirs(os.path.join(a.out, sub), exist_ok=True)
     sj = os.path.join(a.out, "scenes", tag + ".json")
     st = os.path.join(a.out, "stats", tag + ".json")
-    exr = os.path.join(a.out, "images", tag + ".exr")
+    exr = os.path.join(a.out, "images", tag + "." + ext)
     with open(sj, "w") as f:
         json.dump(scene, f, indent=1)
     cmd = [ZSWEEP, "render", sj, "-o", exr, "--threads", "1", "--stats", st]
@@ -142,12 +144,12 @@ def render(a, tag, scene, frames=1, keep=True):
     return stats, exr
 
 
-def render_best(a, tag, scene, frames, rounds):
+def render_best(a, tag, scene, frames, rounds, ext="exr"):
     """`rounds` processes of render(); the stats of the fastest (the images
     are identical: zsweep is deterministic), the image of the last."""
     best = None
     for _ in range(max(1, rounds)):
-        st, exr = render(a, tag, scene, frames)
+        st, exr = render(a, tag, scene, frames, ext=ext)
         if best is None or st["time_ms"]["total"] < best["time_ms"]["total"]:
             best = st
     return best, exr
@@ -333,17 +335,25 @@ def vs_vtk(a, scenes):
                 log(f"  VTK on {name} failed (exit {r.returncode}): {r.stderr.strip()[-300:]}")
         except subprocess.TimeoutExpired:
             log(f"  VTK on {name}: more than {a.timeout:.0f} s")
-        plain, pexr = render_best(a, f"vtk-{name}-{w}-noshadow", S.scene_json(s, w, h, False), a.ours_repeat,
-                                  a.rounds)
+        # Timed with PNG output: RGBA frames, as VTK's; an EXR frame (Z and
+        # lit channels too) gives the darkened pixels and its own time.
+        plain, ppng = render_best(a, f"vtk-{name}-{w}-noshadow", S.scene_json(s, w, h, False), a.ours_repeat,
+                                  a.rounds, ext="png")
+        os.remove(ppng)
         plain_ms = stats_row(plain)["time_ms"]
+        _, pexr = render(a, f"vtk-{name}-{w}-noshadow", S.scene_json(s, w, h, False))
         ours = []
         for label, d, sel, k in [("1-SM+PCF1", 1, None, 1), ("1-SM+PCF4", 1, None, 4), ("1-SM+PCF9", 1, None, 9),
                                  ("2-SM(max)+PCF4", 2, "max", 4), ("exact", 0, None, 0)]:
             sh = shadows_block("exact") if d == 0 else shadows_block("map", a.vtk_map, d, sel, k)
-            st, exr = render_best(a, f"vtk-{name}-{w}-{label}", S.scene_json(s, w, h, sh), a.ours_repeat, a.rounds)
+            st, png = render_best(a, f"vtk-{name}-{w}-{label}", S.scene_json(s, w, h, sh), a.ours_repeat, a.rounds,
+                                  ext="png")
+            os.remove(png)
+            sx, exr = render(a, f"vtk-{name}-{w}-{label}", S.scene_json(s, w, h, sh), a.ours_repeat)
             sr = stats_row(st)
             ours.append(dict(base, renderer="zsweep" if d else "zsweep (Embree exact)", config=label,
                              frame_ms=sr["time_ms"], frame_cached_ms="", frame_plain_ms=plain_ms,
+                             frame_exr_ms=stats_row(sx)["time_ms"],
                              shadow_part_ms=round(sr["time_ms"] - plain_ms, 3), runs=a.ours_repeat * a.rounds,
                              peak_rss_mb=sr["peak_rss_mb"], darker_pixels=M.darker_pixels(exr, pexr),
                              pixels=w * h, triangles=st["triangles"]["total"]))
@@ -353,7 +363,7 @@ def vs_vtk(a, scenes):
         exact_dark = ours[-1]["darker_pixels"]
         if vt:
             rows.append(dict(base, renderer="VTK vtkShadowMapPass", config="1 map, VTK's PCF",
-                             frame_ms=vt["frame_ms"], frame_cached_ms=vt["frame_cached_ms"],
+                             frame_ms=vt["frame_ms"], frame_cached_ms=vt["frame_cached_ms"], frame_exr_ms="",
                              frame_plain_ms=vt["frame_plain_ms"],
                              shadow_part_ms=round(vt["frame_ms"] - vt["frame_plain_ms"], 3), runs=len(vt["frames_ms"]),
                              peak_rss_mb=round(vt["peak_rss_mb"] or 0, 1),
