@@ -1,6 +1,8 @@
 #include "shadows/depth_blocks.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace zs {
 
@@ -13,19 +15,39 @@ void DepthBlocks::reset(uint32_t map_size) {
 
 void fold_block_ranges(const float* z, size_t stride, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1,
                        DepthBlocks& out) {
-  const uint32_t B = 1u << kDepthBlockShift;
-  for (uint32_t by = y0 >> kDepthBlockShift; by <= (y1 - 1) >> kDepthBlockShift; ++by)
+  const uint32_t B = 1u << kDepthBlockShift, w = x1 - x0;
+  // Per block row: each column's min and max down the block's rows (whole
+  // rows at a time, so the loops vectorize), then each block's over its
+  // columns. The comparisons are std::min/std::max's, in their order (a NaN,
+  // never stored, would not lower the minimum).
+  float lo_s[256], hi_s[256];
+  std::vector<float> lo_v, hi_v;
+  float* lo = lo_s;
+  float* hi = hi_s;
+  if (w > 256) {
+    lo_v.resize(w), hi_v.resize(w);
+    lo = lo_v.data(), hi = hi_v.data();
+  }
+  for (uint32_t by = y0 >> kDepthBlockShift; by <= (y1 - 1) >> kDepthBlockShift; ++by) {
+    for (uint32_t x = 0; x < w; ++x) lo[x] = INFINITY, hi[x] = -INFINITY;
+    for (uint32_t y = std::max(y0, by * B); y < std::min(y1, (by + 1) * B); ++y) {
+      const float* row = z + size_t(y - y0) * stride;
+      for (uint32_t x = 0; x < w; ++x) {
+        const float v = row[x];
+        lo[x] = v < lo[x] ? v : lo[x];
+        hi[x] = hi[x] < v ? v : hi[x];
+      }
+    }
     for (uint32_t bx = x0 >> kDepthBlockShift; bx <= (x1 - 1) >> kDepthBlockShift; ++bx) {
       float m = INFINITY, M = -INFINITY;
-      for (uint32_t y = std::max(y0, by * B); y < std::min(y1, (by + 1) * B); ++y)
-        for (uint32_t x = std::max(x0, bx * B); x < std::min(x1, (bx + 1) * B); ++x) {
-          const float v = z[size_t(y - y0) * stride + (x - x0)];
-          m = std::min(m, v);  // NaN never stored; would not lower m
-          M = std::max(M, v);
-        }
+      for (uint32_t x = std::max(x0, bx * B); x < std::min(x1, (bx + 1) * B); ++x) {
+        m = std::min(m, lo[x - x0]);
+        M = std::max(M, hi[x - x0]);
+      }
       out.min[size_t(by) * out.blocks + bx] = m;
       out.max[size_t(by) * out.blocks + bx] = M;
     }
+  }
 }
 
 void dilate_block_ranges(DepthBlocks& b) {

@@ -288,8 +288,11 @@ struct SurfaceRenderer::Impl {
   }
 
   // The RGBA-only output (SurfaceRenderSettings::depth_and_lit off): four
-  // floats a pixel, which the compiler stores as whole vectors.
-  __attribute__((optimize("no-tree-vectorize"))) static void write_rgba(const ShadeBatch& b, const float (*rgb)[kShadeBatch], const float* bg, float* __restrict o) {
+  // floats a pixel, stored one by one (the vectorized interleave, all
+  // permutes, measured slower; so did pairs of floats for six channels).
+  __attribute__((optimize("no-tree-vectorize"))) static void write_rgba(const ShadeBatch& b,
+                                                                       const float (*rgb)[kShadeBatch],
+                                                                       const float* bg, float* __restrict o) {
     const int n = b.n;
     for (int i = 0; i < n; ++i) {
       const bool none = b.id[i] == kNoShade;
