@@ -250,7 +250,6 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
     ZBufferScratch scratch;
     ZBufferCounts counts;
     uint64_t covered = 0;
-    std::vector<float> out;
   };
   tbb::enumerable_thread_specific<Tile> tiles;
   // Only tiles with casters are rendered and stored; the rest read +inf (most
@@ -264,18 +263,38 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
       busy.push_back(t);
       centre.add_tile(t % grid.cols(), t / grid.cols());
     }
-  TiledDepthsSink sink(centre);
+  // Each tile renders only the box of its casters (rounded out to whole
+  // depth blocks) and writes it straight into its storage, which reads +inf
+  // elsewhere; blocks outside the box keep their empty range.
+  struct NoCopy : TileSink {
+    void tile(const TileRect&, const float*) override {}
+  } sink;
   run_tiles(grid, busy, threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
     Tile& w = tiles.local();
-    w.db.assign(size_t(r.width()) * r.height(), INFINITY);
-    const Viewport vp{int(r.x0), int(r.y0), int(r.x1), int(r.y1)};
+    double lx = INFINITY, ly = INFINITY, hx = -INFINITY, hy = -INFINITY;
+    for (const uint32_t* id = bins.begin(t); id != bins.end(t); ++id)
+      for (uint32_t c : pt.corners[*id]) {
+        const ScreenVertex& v = pt.verts[c];
+        lx = std::min(lx, v.x), hx = std::max(hx, v.x), ly = std::min(ly, v.y), hy = std::max(hy, v.y);
+      }
+    constexpr int B = 1 << kDepthBlockShift;
+    auto clampd = [](double v, int lo, int hi) { return v >= lo ? (v <= hi ? int(v) : hi) : lo; };  // NaN: lo
+    const int x0 = clampd(std::floor(lx), int(r.x0), int(r.x1)) & ~(B - 1);
+    const int y0 = clampd(std::floor(ly), int(r.y0), int(r.y1)) & ~(B - 1);
+    const int x1 = std::min(int(r.x1), (clampd(std::ceil(hx) + 1, int(r.x0), int(r.x1)) + B - 1) & ~(B - 1));
+    const int y1 = std::min(int(r.y1), (clampd(std::ceil(hy) + 1, int(r.y0), int(r.y1)) + B - 1) & ~(B - 1));
+    float* tile = centre.tile(r.x0 >> kMapTileShift, r.y0 >> kMapTileShift);
+    if (x1 <= x0 || y1 <= y0) return tile;
+    const size_t bw = size_t(x1 - x0), bh = size_t(y1 - y0);
+    w.db.assign(bw * bh, INFINITY);
+    const Viewport vp{x0, y0, x1, y1};
     zbuffer_depths(pt.verts, pt.corners, bins.begin(t), size_t(bins.end(t) - bins.begin(t)), pt.perspective, vp,
                    w.db.data(), w.scratch, &w.counts);
-    w.out.resize(w.db.size());
-    w.covered += round_depths_up(w.db.data(), w.db.size(), w.out.data());
+    float* at = tile + size_t(y0 - int(r.y0)) * kMapTile + size_t(x0 - int(r.x0));
+    for (size_t y = 0; y < bh; ++y) w.covered += round_depths_up(w.db.data() + y * bw, bw, at + y * kMapTile);
     // Tiles are 64 texels, whole blocks: no two tiles fold into one block.
-    fold_block_ranges(w.out.data(), r.width(), r.x0, r.y0, r.x1, r.y1, m.blocks_);
-    return w.out.data();
+    fold_block_ranges(at, kMapTile, uint32_t(x0), uint32_t(y0), uint32_t(x1), uint32_t(y1), m.blocks_);
+    return tile;
   });
   for (const Tile& w : tiles) {
     st.caster_fragments += w.counts.fragments;
