@@ -90,7 +90,8 @@ def args_parse(argv):
     p.add_argument("--vtk-size", default="1024", help="image sides for the side by side, comma-separated")
     p.add_argument("--vtk-map", type=int, default=2048)
     p.add_argument("--vtk-repeat", type=int, default=5)
-    p.add_argument("--ours-repeat", type=int, default=3, help="frames of ours/Embree next to VTK (3)")
+    p.add_argument("--ours-repeat", type=int, default=5,
+                   help="frames of ours/Embree next to VTK (5: as many as VTK's Render() calls)")
     p.add_argument("--timeout", type=float, default=900, help="seconds per zsweep or VTK process (900)")
     p.add_argument("--keep-images", action="store_true", help="keep every map-mode EXR")
     a = p.parse_args(argv)
