@@ -23,7 +23,7 @@ template <bool persp, bool points>
 void hit_run(const View& view, const TriangleShade& ts, int i0, int i1, ShadeBatch& b) {
   const glm::dvec3 E = view.eye(), F = view.forward(), R = view.right(), U = view.up();
   const double isx = 1.0 / view.scale_x(), ox = view.offset_x();
-  const double bY = (view.offset_y() - b.Y) / view.scale_y();
+  const double bY = b.cb;
   double c[18];  // a local copy: nothing the loop stores can alias it
   std::copy(&ts.num[0], &ts.num[0] + 18, c);
   const float cr = ts.color[0], cg = ts.color[1], cbl = ts.color[2];
@@ -36,11 +36,10 @@ void hit_run(const View& view, const TriangleShade& ts, int i0, int i1, ShadeBat
     const double sh = num / den;
     const bool good = (den != 0) & (std::abs(sh) < INFINITY);
     const double s = good ? sh : b.zbuf[i];
-    b.ca[i] = a, b.cb[i] = bY, b.depth[i] = s;
-    if constexpr (persp) {
+    b.ca[i] = a, b.depth[i] = s;
+    if constexpr (persp && points) {
       const double wx = (F.x + a * R.x) + bY * U.x, wy = (F.y + a * R.y) + bY * U.y, wz = (F.z + a * R.z) + bY * U.z;
-      if constexpr (points) b.px[i] = E.x + s * wx, b.py[i] = E.y + s * wy, b.pz[i] = E.z + s * wz;
-      b.vx[i] = float(wx), b.vy[i] = float(wy), b.vz[i] = float(wz);
+      b.px[i] = E.x + s * wx, b.py[i] = E.y + s * wy, b.pz[i] = E.z + s * wz;
     } else if constexpr (points) {
       b.px[i] = ((E.x + a * R.x) + bY * U.x) + s * F.x;
       b.py[i] = ((E.y + a * R.y) + bY * U.y) + s * F.y;
@@ -77,8 +76,13 @@ void normalize_vectors(const View& view, const TriangleShade* shades, ShadeBatch
         b.sx[i] = float(g[0]), b.sy[i] = float(g[1]), b.sz[i] = float(g[2]);
       }
   if (view.perspective()) {
+    // The ray direction w = F + a·R + b·U (floats: only its direction is used).
+    const glm::vec3 F(view.forward()), R(view.right()), U(view.up());
+    const float bY = float(b.cb);
+    const float fx = F.x + bY * U.x, fy = F.y + bY * U.y, fz = F.z + bY * U.z;
     for (int i = 0; i < n; ++i) {
-      const float wx = b.vx[i], wy = b.vy[i], wz = b.vz[i];
+      const float a = float(b.ca[i]);
+      const float wx = fx + a * R.x, wy = fy + a * R.y, wz = fz + a * R.z;
       const float inv = -1.f / std::sqrt((wx * wx + wy * wy) + wz * wz);
       b.vx[i] = wx * inv, b.vy[i] = wy * inv, b.vz[i] = wz * inv;
     }
@@ -96,6 +100,7 @@ void surface_hits(const View& view, const TriangleShade* shades, ShadeBatch& b) 
   static_assert(offsetof(TriangleShade, num) == 0 && offsetof(TriangleShade, m) == 9 * sizeof(double));
   const int n = b.n;
   const bool persp = view.perspective();
+  b.cb = (view.offset_y() - b.Y) / view.scale_y();
   for (int i0 = 0; i0 < n;) {
     const uint32_t t = b.id[i0];
     int i1 = i0 + 1;
@@ -203,15 +208,15 @@ MapLookup map_lookup(const View& view, const ShadowMap& map, const Light& light,
   return M;
 }
 
-void map_inputs(const MapLookup& M, bool perspective, int n, const double* __restrict ca,
-                const double* __restrict cb, const double* __restrict depth, const uint32_t* __restrict tri,
+void map_inputs(const MapLookup& M, bool perspective, int n, const double* __restrict ca, double cb,
+                const double* __restrict depth, const uint32_t* __restrict tri,
                 double* __restrict X, double* __restrict Y, double* __restrict lim) {
   const double* __restrict fb = M.face_bias.data();
   const double e0 = M.e[0], e1 = M.e[1], e2 = M.e[2], f0 = M.f[0], f1 = M.f[1], f2 = M.f[2];
   const double r0 = M.r[0], r1 = M.r[1], r2 = M.r[2], u0 = M.u[0], u1 = M.u[1], u2 = M.u[2];
   if (perspective)
     for (int i = 0; i < n; ++i) {
-      const double a = ca[i], b = cb[i], s = depth[i];
+      const double a = ca[i], b = cb, s = depth[i];
       X[i] = e0 + s * ((f0 + a * r0) + b * u0);
       Y[i] = e1 + s * ((f1 + a * r1) + b * u1);
       const double z = e2 + s * ((f2 + a * r2) + b * u2);
@@ -219,7 +224,7 @@ void map_inputs(const MapLookup& M, bool perspective, int n, const double* __res
     }
   else
     for (int i = 0; i < n; ++i) {
-      const double a = ca[i], b = cb[i], s = depth[i];
+      const double a = ca[i], b = cb, s = depth[i];
       X[i] = ((e0 + a * r0) + b * u0) + s * f0;
       Y[i] = ((e1 + a * r1) + b * u1) + s * f1;
       const double z = ((e2 + a * r2) + b * u2) + s * f2;

@@ -34,10 +34,11 @@ struct ShadeBatch {
   double Y = 0;
   double X[kShadeBatch], zbuf[kShadeBatch];
   uint32_t id[kShadeBatch], tri[kShadeBatch];
-  // Out of surface_hits: the camera-plane coordinates (triangle_shade.h),
-  // the view depth, the hit point (when `points`), the unit shading normal
-  // (facing the eye) and the unit vector to the eye.
-  double ca[kShadeBatch], cb[kShadeBatch], depth[kShadeBatch];
+  // Out of surface_hits: the camera-plane coordinates (triangle_shade.h; b
+  // is the row's, cb), the view depth, the hit point (when `points`), the
+  // unit shading normal (facing the eye) and the unit vector to the eye.
+  double cb = 0;
+  double ca[kShadeBatch], depth[kShadeBatch];
   double px[kShadeBatch], py[kShadeBatch], pz[kShadeBatch];
   float sx[kShadeBatch], sy[kShadeBatch], sz[kShadeBatch];
   float vx[kShadeBatch], vy[kShadeBatch], vz[kShadeBatch];
@@ -72,8 +73,8 @@ MapLookup map_lookup(const View& view, const ShadowMap& map, const Light& light,
 
 // The map column X, row Y and test limit lim = z − bias_total (shadow_map.h)
 // of n pixels, for ShadowMap::counts_at.
-void map_inputs(const MapLookup& M, bool perspective, int n, const double* __restrict ca,
-                const double* __restrict cb, const double* __restrict depth, const uint32_t* __restrict tri,
+void map_inputs(const MapLookup& M, bool perspective, int n, const double* __restrict ca, double cb,
+                const double* __restrict depth, const uint32_t* __restrict tri,
                 double* __restrict X, double* __restrict Y, double* __restrict lim);
 
 }  // namespace zs
