@@ -32,19 +32,19 @@ struct ShadeBatch {
   // rasterized depths. `tri` is `id` with 0 for kNoShade, an index that is
   // safe to read through.
   double Y = 0;
-  double X[kShadeBatch], zbuf[kShadeBatch];
-  uint32_t id[kShadeBatch], tri[kShadeBatch];
+  double X[kShadeBatch] = {}, zbuf[kShadeBatch] = {};
+  uint32_t id[kShadeBatch] = {}, tri[kShadeBatch] = {};
   // Out of surface_hits: the camera-plane coordinates (triangle_shade.h; b
   // is the row's, cb), the view depth, the hit point (when `points`), the
   // unit shading normal (facing the eye) and the unit vector to the eye.
   double cb = 0;
-  double ca[kShadeBatch], depth[kShadeBatch];
-  double px[kShadeBatch], py[kShadeBatch], pz[kShadeBatch];
-  float sx[kShadeBatch], sy[kShadeBatch], sz[kShadeBatch];
-  float vx[kShadeBatch], vy[kShadeBatch], vz[kShadeBatch];
-  float base[3][kShadeBatch];  // the surface's colour
+  double ca[kShadeBatch] = {}, depth[kShadeBatch] = {};
+  double px[kShadeBatch] = {}, py[kShadeBatch] = {}, pz[kShadeBatch] = {};
+  float sx[kShadeBatch] = {}, sy[kShadeBatch] = {}, sz[kShadeBatch] = {};
+  float vx[kShadeBatch] = {}, vy[kShadeBatch] = {}, vz[kShadeBatch] = {};
+  float base[3][kShadeBatch] = {};  // the surface's colour
   // Accumulated by add_lights.
-  float diffuse[kShadeBatch], specular[kShadeBatch];
+  float diffuse[kShadeBatch] = {}, specular[kShadeBatch] = {};
 };
 
 // Hit points and normals of the batch's covered pixels; zeroes the sums.
