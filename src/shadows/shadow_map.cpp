@@ -491,9 +491,16 @@ double ShadowMap::face_bias(double c) const {
 
 namespace {
 // Scalar loads beat the vector gathers here (two dependent gathers per point).
-__attribute__((optimize("no-tree-vectorize"))) void read_one(const TiledDepths::Reader& md, size_t m,
-                                                               const uint32_t* tile, const uint32_t* off,
-                                                               const double* lim, uint32_t* out) {
+#if defined(__clang__)
+#define ZS_SCALAR_LOOP _Pragma("clang loop vectorize(disable)")
+#define ZS_NO_VECTORIZE
+#else
+#define ZS_SCALAR_LOOP
+#define ZS_NO_VECTORIZE __attribute__((optimize("no-tree-vectorize")))
+#endif
+ZS_NO_VECTORIZE void read_one(const TiledDepths::Reader& md, size_t m, const uint32_t* tile, const uint32_t* off,
+                              const double* lim, uint32_t* out) {
+  ZS_SCALAR_LOOP
   for (size_t i = 0; i < m; ++i) {
     const uint32_t s = md.slot[tile[i]];
     const float z = s == kEmptyTile ? INFINITY : md.data[(size_t(s) << (2 * kMapTileShift)) + off[i]];
