@@ -304,7 +304,7 @@ struct SurfaceRenderer::Impl {
 
   // The output of the batch's pixels, in order: colour, alpha 1, depth and
   // each light's lit fraction, or the background (depth and lit +inf).
-  // Kc = C when known at compile time (one light: the stores vectorize).
+  // Kc = C when known at compile time (one light: the channel loop unrolls).
   template <uint32_t Kc>
   static void write_pixels(const ShadeBatch& b, const float (*rgb)[kShadeBatch], const float* lits, const float* bg,
                            uint32_t Cr, float* __restrict o) {
