@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 
 #include <glm/geometric.hpp>
 
@@ -24,8 +25,15 @@ void hit_run(const View& view, const TriangleShade& ts, int i0, int i1, ShadeBat
   const glm::dvec3 E = view.eye(), F = view.forward(), R = view.right(), U = view.up();
   const double isx = 1.0 / view.scale_x(), ox = view.offset_x();
   const double bY = b.cb;
-  double c[18];  // a local copy: nothing the loop stores can alias it
-  std::copy(&ts.num[0], &ts.num[0] + 18, c);
+  // A local copy (nothing the loop stores can alias it), as a struct so that
+  // it is a few register moves, not a library call per run.
+  struct Coeffs {
+    double v[18];
+  };
+  static_assert(sizeof(TriangleShade) >= sizeof(Coeffs));
+  Coeffs cs;
+  std::memcpy(&cs, &ts.num[0], sizeof cs);
+  const double* c = cs.v;
   const float cr = ts.color[0], cg = ts.color[1], cbl = ts.color[2];
   for (int i = i0; i < i1; ++i) {
     b.base[0][i] = cr, b.base[1][i] = cg, b.base[2][i] = cbl;
