@@ -66,13 +66,16 @@ double reach_texels(const ShadowSettings& s) {
 // of the plane (tol = 1e-9 of the diagonal, far below the test's 2^-20·|d|
 // storage bias), it shadows nothing. A ground plane under the scene is the
 // usual case: it covers most of a map and casts onto nothing.
+// Directional lights also skip the faces of closed solids turned from the
+// light (m.solid; surfaces/closed_solids.h), counted in *back_faces.
 std::vector<uint8_t> non_casters(const TriangleMesh& m, const Light& l, const Bounds& scene, double diag,
-                                 uint64_t* count) {
+                                 uint64_t* count, uint64_t* back_faces) {
   std::vector<uint8_t> skip(m.num_tris(), 0);
   glm::dvec3 box[8];
   for (int c = 0; c < 8; ++c)
     box[c] = {c & 1 ? scene.hi.x : scene.lo.x, c & 2 ? scene.hi.y : scene.lo.y, c & 4 ? scene.hi.z : scene.lo.z};
-  uint64_t n = 0;
+  uint64_t n = 0, nb = 0;
+  const bool solids = l.type == LightType::Directional && m.solid.size() == m.num_tris();
   for (size_t t = 0; t < m.num_tris(); ++t) {
     const glm::dvec3& a = m.points[m.tris[t][0]];
     const glm::dvec3 nrm = face_normal(m, t);
@@ -85,9 +88,13 @@ std::vector<uint8_t> non_casters(const TriangleMesh& m, const Light& l, const Bo
     if (all) {
       skip[t] = 1;
       ++n;
+    } else if (solids && double(m.solid[t]) * side < 0) {  // the fronts face out: side > 0 faces the light
+      skip[t] = 1;
+      ++nb;
     }
   }
   *count = n;
+  *back_faces = nb;
   return skip;
 }
 
@@ -227,16 +234,8 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   ProjectedTriangles pt;
   ProjectCounts pc;
   std::vector<uint8_t> skip;
-  if (s.cull_casters && !scene.empty) skip = non_casters(casters, light, scene, diag, &st.casters_culled);
-  if (s.cull_casters && light.type == LightType::Directional && casters.solid.size() == casters.num_tris()) {
-    if (skip.empty()) skip.assign(casters.num_tris(), 0);
-    for (size_t t = 0; t < casters.num_tris(); ++t)
-      if (!skip[t] && casters.solid[t] != 0 &&
-          double(casters.solid[t]) * glm::dot(face_normal(casters, t), light.direction) > 0) {
-        skip[t] = 1;
-        ++st.casters_back_faces;
-      }
-  }
+  if (s.cull_casters && !scene.empty)
+    skip = non_casters(casters, light, scene, diag, &st.casters_culled, &st.casters_back_faces);
   project_triangles(casters, *m.view_, {false, true, z_near, skip.empty() ? nullptr : &skip}, &pt, &pc);
   const TileGrid grid{D, D, kMapTile, 1};
   TriangleBins bins;
@@ -501,11 +500,7 @@ namespace {
 ZS_NO_VECTORIZE void read_one(const TiledDepths::Reader& md, size_t m, const uint32_t* tile, const uint32_t* off,
                               const double* lim, uint32_t* out) {
   ZS_SCALAR_LOOP
-  for (size_t i = 0; i < m; ++i) {
-    const uint32_t s = md.slot[tile[i]];
-    const float z = s == kEmptyTile ? INFINITY : md.data[(size_t(s) << (2 * kMapTileShift)) + off[i]];
-    out[i] = lim[i] <= double(z) ? 1u : 0u;
-  }
+  for (size_t i = 0; i < m; ++i) out[i] = lim[i] <= double(md.at(tile[i], off[i])) ? 1u : 0u;
 }
 }  // namespace
 
@@ -537,7 +532,7 @@ void ShadowMap::counts_at(size_t n, const double* X, const double* Y, const doub
         int tx = int(std::floor(xs + 0.5)), ty = int(std::floor(ys + 0.5));
         tx = tx < 0 ? 0 : (tx > Dm ? Dm : tx);
         ty = ty < 0 ? 0 : (ty > Dm ? Dm : ty);
-        tile[i] = (uint32_t(ty) >> kMapTileShift) * md.tiles + (uint32_t(tx) >> kMapTileShift);
+        tile[i] = md.tile_of(uint32_t(tx), uint32_t(ty));
         off[i] = uint32_t(TiledDepths::index(0, uint32_t(tx), uint32_t(ty)));
         Lc[i] = ok ? Lc[i] : NAN;
       }

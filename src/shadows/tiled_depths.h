@@ -52,10 +52,13 @@ class TiledDepths {
     const uint32_t* slot;
     const float* data;
     uint32_t tiles;
-    // Texel (x, y)'s depth (+inf in an empty tile), without a branch.
-    float at(uint32_t x, uint32_t y) const {
-      const uint32_t s = slot[size_t(y >> kMapTileShift) * tiles + (x >> kMapTileShift)];
-      return s == kEmptyTile ? INFINITY : data[index(s == kEmptyTile ? 0 : s, x, y)];
+    // Where texel (x, y) is: its tile (row-major) and its place in the
+    // tile (index(0, x, y)); loops work these out vectorized first.
+    uint32_t tile_of(uint32_t x, uint32_t y) const { return (y >> kMapTileShift) * tiles + (x >> kMapTileShift); }
+    // The depth at that tile and place (+inf in an empty tile).
+    float at(uint32_t tile, uint32_t off) const {
+      const uint32_t s = slot[tile];
+      return s == kEmptyTile ? INFINITY : data[(size_t(s) << (2 * kMapTileShift)) + off];
     }
   };
   Reader reader() const { return {slot_.data(), data_.data(), tiles_}; }  // n = 1 maps only

@@ -66,8 +66,7 @@ struct SurfaceRenderer::Impl {
   SurfaceStats setup;
   SurfaceTileTotals totals;
   tbb::enumerable_thread_specific<TileState> states;
-  glm::dvec3 bg_rgb{0.0};
-  double bg_a = 0;
+  float bg[4] = {0, 0, 0, 0};  // the background's premultiplied RGBA
   bool any_spot = false;
 
   Impl(const TriangleMesh& m, const SurfaceRenderSettings& settings, uint64_t extra_bytes)
@@ -154,8 +153,7 @@ struct SurfaceRenderer::Impl {
     }
     if (!maps.empty()) make_lookups();
     S.ms_shadows = ms_since(t);
-    bg_rgb = glm::dvec3(rs.background[0], rs.background[1], rs.background[2]);
-    bg_a = rs.background[3];
+    for (int c = 0; c < 4; ++c) bg[c] = float(rs.background[c]);
     S.ms_setup = ms_since(t_start);
   }
 
@@ -220,7 +218,6 @@ struct SurfaceRenderer::Impl {
   }
 
   void write_background(int n, uint32_t C, float* o) const {
-    const float bg[4] = {float(bg_rgb.x), float(bg_rgb.y), float(bg_rgb.z), float(bg_a)};
     for (int i = 0; i < n; ++i, o += C) {
       for (int c = 0; c < 4; ++c) o[c] = bg[c];
       for (uint32_t c = 4; c < C; ++c) o[c] = INFINITY;
@@ -279,7 +276,6 @@ struct SurfaceRenderer::Impl {
     }
     float rgb[3][kShadeBatch];
     surface_colours(b, rs.shading.ambient, rgb);
-    const float bg[4] = {float(bg_rgb.x), float(bg_rgb.y), float(bg_rgb.z), float(bg_a)};
     if (C == 4)
       write_rgba(b, rgb, bg, o);
     else if (C == 6)

@@ -385,7 +385,8 @@ TEST(Surfaces, NearClippedGroundCoversExactlyItsPixels) {
 
 // Threads and tiles change no bit: every channel, both shadow modes, with
 // a spot light and a directional one, n-SM and PCF.
-TEST(Surfaces, ThreadsAndTilesGiveBitIdenticalImages) {
+// The cube raised over a ground quad (surface 1), and a camera seeing both.
+TriangleMesh cube_over_ground() {
   TriangleMesh m = cube();
   TriangleMesh ground;
   ground.points = {{-3, 0, -3}, {4, 0, -3}, {4, 0, 4}, {-3, 0, 4}};
@@ -393,11 +394,20 @@ TEST(Surfaces, ThreadsAndTilesGiveBitIdenticalImages) {
   for (glm::dvec3& p : m.points) p += glm::dvec3(0, 0.3, 0);
   append_mesh(m, ground, 1);
   compute_point_normals(m);
+  return m;
+}
+Camera cube_camera() {
   Camera cam;
   cam.projection = Projection::Perspective;
   cam.eye = {3, 4, 5};
   cam.target = {0.5, 0.3, 0.5};
   cam.fov_y = 45;
+  return cam;
+}
+
+TEST(Surfaces, ThreadsAndTilesGiveBitIdenticalImages) {
+  const TriangleMesh m = cube_over_ground();
+  const Camera cam = cube_camera();
   for (ShadowMode mode : {ShadowMode::Map, ShadowMode::Exact}) {
     std::vector<std::vector<float>> images;
     for (auto [threads, tile] : {std::pair{1, 16u}, std::pair{2, 16u}, std::pair{2, 64u}, std::pair{1, 8u}}) {
@@ -431,18 +441,8 @@ TEST(Surfaces, ThreadsAndTilesGiveBitIdenticalImages) {
 
 TEST(Surfaces, RgbaOnlyTilesHoldTheSameColours) {
   // depth_and_lit off (8-bit outputs): four channels, the same RGBA bits.
-  TriangleMesh m = cube();
-  TriangleMesh ground;
-  ground.points = {{-3, 0, -3}, {4, 0, -3}, {4, 0, 4}, {-3, 0, 4}};
-  ground.tris = {{0, 2, 1}, {0, 3, 2}};
-  for (glm::dvec3& p : m.points) p += glm::dvec3(0, 0.3, 0);
-  append_mesh(m, ground, 1);
-  compute_point_normals(m);
-  Camera cam;
-  cam.projection = Projection::Perspective;
-  cam.eye = {3, 4, 5};
-  cam.target = {0.5, 0.3, 0.5};
-  cam.fov_y = 45;
+  const TriangleMesh m = cube_over_ground();
+  const Camera cam = cube_camera();
   std::vector<float> rgba[2];
   for (int only = 0; only < 2; ++only) {
     SurfaceRenderSettings s = settings_for(cam, 100, 77, 2);
