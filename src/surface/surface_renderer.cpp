@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -14,6 +13,7 @@
 #include "raster/triangle_bins.h"
 #include "raster/zbuffer_tile.h"
 #include "shadows/shadow_rays.h"
+#include "surface/rgba_store.h"
 #include "surface/shade_batch.h"
 #include "surfaces/visible_region.h"
 #include "util/bytes_str.h"
@@ -276,7 +276,7 @@ struct SurfaceRenderer::Impl {
     float rgb[3][kShadeBatch];
     surface_colours(b, rs.shading.ambient, rgb);
     if (C == 4)
-      write_rgba(b, rgb, bg, o);
+      store_rgba(n, rgb[0], rgb[1], rgb[2], b.id, kNoShade, bg, o);
     else if (C == 6)
       write_pixels<6>(b, rgb, lits, bg, C, o);
     else
@@ -287,20 +287,6 @@ struct SurfaceRenderer::Impl {
   // loop inline in shade stayed scalar: lit and f could alias).
   static void facing_of(const float* __restrict f, const uint32_t* __restrict tri, int n, float* __restrict lit) {
     for (int i = 0; i < n; ++i) lit[i] = f[tri[i]];
-  }
-
-  // The RGBA-only output (SurfaceRenderSettings::depth_and_lit off): one
-  // 16-byte store a pixel (the compiler's vectorized interleave, all
-  // permutes, measured slower; so did pairs of floats for six channels).
-  static void write_rgba(const ShadeBatch& b, const float (*rgb)[kShadeBatch], const float* bg, float* __restrict o) {
-    typedef float F4 __attribute__((vector_size(16)));
-    const F4 back = {bg[0], bg[1], bg[2], bg[3]};
-    const int n = b.n;
-    for (int i = 0; i < n; ++i) {
-      const F4 px = {rgb[0][i], rgb[1][i], rgb[2][i], 1.f};
-      const F4 v = b.id[i] == kNoShade ? back : px;
-      std::memcpy(o + 4 * size_t(i), &v, sizeof v);
-    }
   }
 
   // The output of the batch's pixels, in order: colour, alpha 1, depth and
