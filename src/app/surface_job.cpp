@@ -113,7 +113,9 @@ nlohmann::json SurfaceJob::stats(const TiledRenderer& r, const FrameReport& f) c
         {"slope_bias", sh.slope_bias},
         {"levels", sh.depths * sh.pcf + 1},
         {"tests", T.shadow_tests},
-        {"depth_reads", T.shadow_tests * sh.depths * sh.pcf},
+        // Tests decided by map tiles with no caster (no depth read).
+        {"tests_in_empty_tiles", T.shadow_tests_empty},
+        {"depth_reads", (T.shadow_tests - T.shadow_tests_empty) * sh.depths * sh.pcf},
         {"rays", T.shadow_rays},
         {"lit_pixel_lights", T.lit_pixels},
         {"maps", maps}}},

@@ -504,6 +504,27 @@ ZS_NO_VECTORIZE void read_one(const TiledDepths::Reader& md, size_t m, const uin
 }
 }  // namespace
 
+bool ShadowMap::passes_all(double x0, double x1, double y0, double y1) const {
+  if (!(std::isfinite(x0) && std::isfinite(x1) && std::isfinite(y0) && std::isfinite(y1)) || x1 < x0 || y1 < y0)
+    return false;
+  // The texels counts_at's kernels read for the corners (clamps and floor
+  // are monotone, so every X and Y between read between them).
+  const Kernel k = kernel_of(s_.pcf);
+  const double half = k.odd ? 0.5 : 0.0, D8 = frame_.D + 8.0;
+  const int Dm = int(size_) - 1;
+  auto texel = [&](double v, int extra) {
+    v = v < -8.0 ? -8.0 : (D8 < v ? D8 : v);
+    const int t = int(std::floor(v + half)) + k.first + extra;
+    return uint32_t(t < 0 ? 0 : (t > Dm ? Dm : t));
+  };
+  const uint32_t tx0 = texel(x0, 0) >> kMapTileShift, tx1 = texel(x1, k.width - 1) >> kMapTileShift;
+  const uint32_t ty0 = texel(y0, 0) >> kMapTileShift, ty1 = texel(y1, k.width - 1) >> kMapTileShift;
+  for (uint32_t ty = ty0; ty <= ty1; ++ty)
+    for (uint32_t tx = tx0; tx <= tx1; ++tx)
+      if (md_.stored(tx, ty)) return false;
+  return true;
+}
+
 void ShadowMap::counts_at(size_t n, const double* X, const double* Y, const double* lim, uint32_t* out) const {
   const double D8 = frame_.D + 8.0;
   constexpr size_t kChunk = 64;

@@ -114,6 +114,11 @@ class ShadowMap {
   AffineLookup affine_lookup() const;
   double face_bias(double c) const;
   void counts_at(size_t n, const double* X, const double* Y, const double* lim, uint32_t* out) const;
+  // True when every lookup with X in [x0, x1] and Y in [y0, y1] reads only
+  // texels of tiles with no caster (all +inf): counts_at then gives levels()
+  // for a number limit and 0 for NaN, without reading. False for bounds that
+  // are not finite.
+  bool passes_all(double x0, double x1, double y0, double y1) const;
 
   // The texel a one-texel kernel reads for p (nearest, clamped to the map)
   // and p's test limit d − bias: what other per-texel data of the map (the

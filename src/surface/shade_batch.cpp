@@ -1,6 +1,7 @@
 #include "surface/shade_batch.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -209,11 +210,52 @@ MapLookup map_lookup(const View& view, const ShadowMap& map, const Light& light,
   }
   const glm::dvec3 to = to_light(light, glm::dvec3(0.0));
   M.face_bias.resize(shades.size());
+  M.toward.resize(shades.size());
   for (size_t t = 0; t < shades.size(); ++t) {
     const double* g = shades[t].g;
     M.face_bias[t] = map.face_bias(dot3(g[0], g[1], g[2], to.x, to.y, to.z));
+    M.toward[t] = M.face_bias[t] == M.face_bias[t] ? 1.f : 0.f;
   }
   return M;
+}
+
+void depth_range(const ShadeBatch& b, double* lo, double* hi) {
+  // On integer keys that order doubles as numbers (negatives' magnitude bits
+  // flipped), so that the loop vectorizes; a NaN depth gives a NaN bound.
+  constexpr int64_t kMag = 0x7fffffffffffffff;
+  int64_t kmin = INT64_MAX, kmax = INT64_MIN;
+  const double* __restrict depth = b.depth;
+  const uint32_t* __restrict id = b.id;
+  for (int i = 0; i < b.n; ++i) {
+    const int64_t bits = std::bit_cast<int64_t>(depth[i]);
+    const int64_t key = bits ^ ((bits >> 63) & kMag);
+    const int64_t m = -int64_t(id[i] != kNoShade);  // all ones where covered (bits, not a branch)
+    const int64_t a = (key & m) | (INT64_MAX & ~m), c = (key & m) | (INT64_MIN & ~m);
+    kmin = std::min(kmin, a);
+    kmax = std::max(kmax, c);
+  }
+  if (kmin > kmax) {  // nothing covered
+    *lo = INFINITY, *hi = -INFINITY;
+    return;
+  }
+  *lo = std::bit_cast<double>(kmin ^ ((kmin >> 63) & kMag));
+  *hi = std::bit_cast<double>(kmax ^ ((kmax >> 63) & kMag));
+}
+
+void map_range(const MapLookup& M, bool perspective, double a0, double a1, double cb, double s0, double s1, double* x,
+               double* y, double* z) {
+  double* out[3] = {x, y, z};
+  for (int k = 0; k < 3; ++k) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (double a : {a0, a1})
+      for (double s : {s0, s1}) {
+        // map_inputs' expressions.
+        const double v = perspective ? M.e[k] + s * ((M.f[k] + a * M.r[k]) + cb * M.u[k])
+                                     : ((M.e[k] + a * M.r[k]) + cb * M.u[k]) + s * M.f[k];
+        lo = std::min(lo, v), hi = std::max(hi, v);
+      }
+    out[k][0] = lo, out[k][1] = hi;
+  }
 }
 
 void map_inputs(const MapLookup& M, bool perspective, int n, const double* __restrict ca, double cb,

@@ -67,9 +67,21 @@ void surface_colours(const ShadeBatch& b, double ambient, float rgb[3][kShadeBat
 struct MapLookup {
   double e[3], f[3], r[3], u[3];  // QE, QF, QR, QU for Q = map column X, row Y, light depth z
   std::vector<double> face_bias;  // per TriangleShade; NaN: turned from the light
+  std::vector<float> toward;      // per TriangleShade: 1 where face_bias is a number, else 0
 };
 MapLookup map_lookup(const View& view, const ShadowMap& map, const Light& light,
                      const std::vector<TriangleShade>& shades);
+
+// The least and greatest depth of the batch's covered pixels (+inf, −inf
+// when none is covered; NaN if a depth is).
+void depth_range(const ShadeBatch& b, double* lo, double* hi);
+
+// Bounds on map_inputs' X, Y and light depth z over pixels with a between
+// a0 and a1 and depth s in [s0, s1]: each is bilinear (perspective) or affine
+// (orthographic) in (a, s), so its extremes are at the four corners. Out:
+// x[0..1], y[0..1], z[0..1] (low, high), before any rounding margin.
+void map_range(const MapLookup& M, bool perspective, double a0, double a1, double cb, double s0, double s1, double* x,
+               double* y, double* z);
 
 // The map column X, row Y and test limit lim = z − bias_total (shadow_map.h)
 // of n pixels, for ShadowMap::counts_at.

@@ -243,6 +243,12 @@ struct SurfaceRenderer::Impl {
           lit[i] = b.id[i] != kNoShade && rays->lit(light, {b.px[i], b.py[i], b.pz[i]}, {g[0], g[1], g[2]}) ? 1.f : 0.f;
         }
         T.shadow_rays += uint64_t(covered);
+      } else if (shadows && light.type == LightType::Directional && rs.empty_tile_early_out &&
+                 in_empty_tiles(l, b)) {
+        // Every test passes: lit 1, or 0 where the face turns from the light.
+        facing_of(lookups[l].toward.data(), b.tri, n, lit);
+        T.shadow_tests += uint64_t(covered);
+        T.shadow_tests_empty += uint64_t(covered);
       } else if (shadows) {
         uint32_t cnt[kShadeBatch];
         if (light.type == LightType::Directional)
@@ -307,6 +313,24 @@ struct SurfaceRenderer::Impl {
       q[4] = none ? INFINITY : float(b.depth[i]);
       for (uint32_t c = 5; c < C; ++c) q[c] = none ? INFINITY : lits[size_t(c - 5) * kShadeBatch + i];
     }
+  }
+
+  // An exact early out for light l (a directional map): true when every
+  // covered pixel's kernel falls in map tiles with no caster, so that every
+  // test passes (none where the face turns from the light: a NaN limit). The
+  // batch's range of X and Y has a texel of margin for the rounding of each
+  // pixel's own inputs.
+  bool in_empty_tiles(size_t l, const ShadeBatch& b) const {
+    double s0, s1;
+    depth_range(b, &s0, &s1);
+    if (!(s0 <= s1)) return false;
+    // The a of the batch's first and last pixel, as hit_run has them.
+    const double isx = 1.0 / view.scale_x(), ox = view.offset_x();
+    const double a0 = (b.X[0] - ox) * isx, a1 = (b.X[b.n - 1] - ox) * isx;
+    double x[2], y[2], z[2];
+    map_range(lookups[l], view.perspective(), std::min(a0, a1), std::max(a0, a1), b.cb, s0, s1, x, y, z);
+    return std::abs(z[0]) < 1e300 && std::abs(z[1]) < 1e300 &&
+           maps[l].passes_all(x[0] - 1, x[1] + 1, y[0] - 1, y[1] + 1);
   }
 
   // Light l's lit counts (a directional map) from the pixels' camera-plane

@@ -29,6 +29,9 @@ struct SurfaceRenderSettings {
   // The Z and lit channels of the tiles (off: R, G, B, A only, for outputs
   // that keep no more; the same colours either way).
   bool depth_and_lit = true;
+  // The exact early out of directional lookups that fall in map tiles with
+  // no caster (surface_renderer.cpp). Off only to show that it changes no bit.
+  bool empty_tile_early_out = true;
   uint64_t memory_budget_bytes = 0;  // 0: none
   bool progress = false;
 };

@@ -17,6 +17,7 @@ struct SurfaceTileTotals {
   uint64_t depth_writes = 0;
   uint64_t rendered_pixels = 0;
   uint64_t shadow_tests = 0;       // (pixel, light) map lookups: k·n depth reads each
+  uint64_t shadow_tests_empty = 0; // of those, decided by map tiles with no caster (no read)
   uint64_t shadow_rays = 0;        // (pixel, light) Embree rays (exact mode)
   uint64_t lit_pixels = 0;         // (pixel, light) pairs with lit > 0
   double ms_tiles = 0;             // summed over threads
@@ -27,6 +28,7 @@ struct SurfaceTileTotals {
     depth_writes += o.depth_writes;
     rendered_pixels += o.rendered_pixels;
     shadow_tests += o.shadow_tests;
+    shadow_tests_empty += o.shadow_tests_empty;
     shadow_rays += o.shadow_rays;
     lit_pixels += o.lit_pixels;
     ms_tiles += o.ms_tiles;

@@ -385,5 +385,55 @@ TEST(ShadowMaps, TiledMultiDepthEqualsTheDensePass) {
     }
 }
 
+// ShadowMap::passes_all, the early out of lookups that fall in map tiles
+// with no caster: exact at the tile border for each kernel, and every
+// lookup inside a range it passes counts all levels (0 for a NaN limit).
+TEST(ShadowMaps, EmptyTilesPassEveryTestInTheirRange) {
+  constexpr uint32_t S = 512;  // 8 × 8 tiles of 64 texels
+  Camera frame = map_frame();
+  frame.height = S;
+  // One caster block in tile (4, 4): texels 260..300 × 270..280.
+  std::vector<float> z(size_t(S) * S, INFINITY);
+  for (uint32_t y = 270; y <= 280; ++y)
+    for (uint32_t x = 260; x <= 300; ++x) z[size_t(y) * S + x] = 1.5f;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (uint32_t n : {1u, 2u, 3u})
+    for (uint32_t k : {1u, 4u, 9u, 16u}) {
+      const ShadowMap m = ShadowMap::from_depths(down_z(), frame, S, z, settings(n, DepthSelect::Max, k, 0.01));
+      // The last X whose kernel stays left of texel 256 (tile 4), and the
+      // first that reaches it, rows inside the caster's tile row.
+      const double last = k == 1 ? 255.49 : k == 4 ? 254.99 : k == 9 ? 254.49 : 253.99;
+      const double first = k == 1 ? 255.5 : k == 4 ? 255.0 : k == 9 ? 254.5 : 254.0;
+      if (n == 1) {  // an n-SM also stores the tiles around a caster's
+        EXPECT_TRUE(m.passes_all(200, last, 262, 300)) << "k " << k;
+        EXPECT_FALSE(m.passes_all(200, first, 262, 300)) << "k " << k;
+      }
+      EXPECT_TRUE(m.passes_all(-50, 120, -3, 100));  // tiles (0..1, 0..1), and off the map's corner
+      EXPECT_FALSE(m.passes_all(-50, 120, -3, NAN));
+      EXPECT_FALSE(m.passes_all(120, -50, -3, 100));  // an empty range
+      EXPECT_FALSE(m.passes_all(0, S, 0, S));
+      // Random ranges: where they pass, every lookup in them counts all levels.
+      int passed = 0;
+      for (int t = 0; t < 300; ++t) {
+        double x0 = -20 + (S + 40) * U(rng), y0 = -20 + (S + 40) * U(rng);
+        const double x1 = x0 + 100 * U(rng), y1 = y0 + 100 * U(rng);
+        if (!m.passes_all(x0, x1, y0, y1)) continue;
+        ++passed;
+        std::vector<double> X, Y, lim;
+        for (int i = 0; i < 64; ++i) {
+          X.push_back(x0 + (x1 - x0) * U(rng)), Y.push_back(y0 + (y1 - y0) * U(rng));
+          lim.push_back(i % 16 == 0 ? NAN : 10 * U(rng));
+        }
+        X[1] = x0, X[2] = x1, Y[3] = y0, Y[4] = y1;  // the corners themselves
+        std::vector<uint32_t> out(X.size());
+        m.counts_at(X.size(), X.data(), Y.data(), lim.data(), out.data());
+        for (size_t i = 0; i < out.size(); ++i)
+          ASSERT_EQ(out[i], lim[i] == lim[i] ? m.levels() : 0u) << "n " << n << " k " << k << " at " << X[i] << "," << Y[i];
+      }
+      EXPECT_GT(passed, 100);
+    }
+}
+
 }  // namespace
 }  // namespace zs

@@ -439,6 +439,56 @@ TEST(Surfaces, ThreadsAndTilesGiveBitIdenticalImages) {
   }
 }
 
+// The early out of lookups in empty map tiles (surface_renderer.cpp) is
+// exact: on and off give the same bits, for n-SMs and PCF kernels, two
+// lights, both projections and two tile sizes, while it decides part of the
+// tests.
+TEST(Surfaces, EmptyTileEarlyOutChangesNoBit) {
+  const TriangleMesh m = cube_over_ground();
+  // Rolled cameras, so that depth changes along the ground's rows too.
+  Camera persp = cube_camera();
+  persp.up = {0.5, 1, 0};
+  Camera ortho = persp;
+  ortho.projection = Projection::Orthographic;
+  ortho.height = 5;
+  struct Config {
+    uint32_t depths, pcf;
+  };
+  for (const Camera& cam : {persp, ortho})
+    for (Config c : {Config{1, 1}, Config{2, 4}, Config{3, 9}, Config{1, 16}})
+      for (uint32_t tile : {16u, 64u}) {
+        std::vector<float> images[2];
+        for (int early = 0; early < 2; ++early) {
+          SurfaceRenderSettings s = settings_for(cam, 150, 110, 2);
+          Light side;
+          side.direction = {-1, -0.7, 0.4};
+          s.lights = {Light{}, side};
+          s.shadows.depths = c.depths;
+          s.shadows.pcf = c.pcf;
+          s.shadows.map_size = 512;
+          s.tile_size = tile;
+          s.empty_tile_early_out = early == 1;
+          SurfaceRenderer r(m, s);
+          ImageSink sink(r.grid());
+          r.render_tiles(sink, nullptr);
+          images[early].assign(sink.image.rgba.begin(), sink.image.rgba.end());
+          images[early].insert(images[early].end(), sink.z.begin(), sink.z.end());
+          images[early].insert(images[early].end(), sink.extra.begin(), sink.extra.end());
+          const SurfaceTileTotals& T = r.stats().tiles;
+          if (early) {
+            EXPECT_GT(T.shadow_tests_empty, T.shadow_tests / 10) << c.depths << "-SM PCF " << c.pcf;
+            EXPECT_LT(T.shadow_tests_empty, T.shadow_tests * 9 / 10);
+          } else {
+            EXPECT_EQ(T.shadow_tests_empty, 0u);
+          }
+        }
+        ASSERT_EQ(images[0].size(), images[1].size());
+        EXPECT_EQ(0, std::memcmp(images[0].data(), images[1].data(), images[0].size() * sizeof(float)))
+            << (cam.projection == Projection::Perspective ? "perspective " : "orthographic ") << c.depths
+            << "-SM PCF " << c.pcf << " tile " << tile;
+      }
+}
+
 TEST(Surfaces, RgbaOnlyTilesHoldTheSameColours) {
   // depth_and_lit off (8-bit outputs): four channels, the same RGBA bits.
   const TriangleMesh m = cube_over_ground();

@@ -126,5 +126,38 @@ TEST(TriangleShade, FarFromTheOriginAndSmall) {
   check_view(cam, off, 0.01, 3);
 }
 
+// depth_range (the empty-tile early out's depth bounds): the least and
+// greatest depth of the covered pixels only, across signs and zeros, and NaN
+// when a covered depth is NaN.
+TEST(TriangleShade, DepthRangeOfCoveredPixels) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    ShadeBatch b;
+    b.n = 1 + int(rng() % kShadeBatch);
+    double lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < b.n; ++i) {
+      const int kind = int(rng() % 6);
+      b.depth[i] = kind == 0 ? 0.0 : kind == 1 ? -0.0 : kind == 2 ? 1e300 * U(rng) : U(rng) * std::exp2(int(rng() % 40) - 20);
+      const bool covered = rng() % 4 != 0;
+      b.id[i] = covered ? uint32_t(i) : kNoShade;
+      if (!covered) b.depth[i] = (rng() % 2 ? -1 : 1) * 1e308;  // must not count
+      if (covered) lo = std::min(lo, b.depth[i]), hi = std::max(hi, b.depth[i]);
+    }
+    double got_lo, got_hi;
+    depth_range(b, &got_lo, &got_hi);
+    if (lo > hi) {  // nothing covered
+      EXPECT_EQ(got_lo, INFINITY);
+      EXPECT_EQ(got_hi, -INFINITY);
+      continue;
+    }
+    EXPECT_EQ(got_lo, lo);  // ±0 compare equal, either may come back
+    EXPECT_EQ(got_hi, hi);
+    b.id[0] = 0, b.depth[0] = NAN;
+    depth_range(b, &got_lo, &got_hi);
+    EXPECT_FALSE(got_lo <= got_hi);
+  }
+}
+
 }  // namespace
 }  // namespace zs
