@@ -2,12 +2,25 @@
 #include <exception>
 #include <iostream>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
 #include "mpi/mpi_env.h"
 
 int main(int argc, char** argv) {
+#if defined(__GLIBC__)
+  // Each frame (--frames, benchmarks) allocates and frees the same large
+  // buffers. By default glibc hands them back to the kernel and then
+  // faults them in again, zeroed, for the next frame, and its adaptive
+  // thresholds take several frames to settle. Keep freed memory for reuse
+  // instead: this process exits when its frames are done.
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
   CLI::App app{"zsweep: direct volume rendering of tetrahedral meshes (ZSweep lineage)"};
   app.set_version_flag("--version", "zsweep 0.1.0");
   app.require_subcommand(1);
