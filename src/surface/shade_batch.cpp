@@ -210,11 +210,9 @@ MapLookup map_lookup(const View& view, const ShadowMap& map, const Light& light,
   }
   const glm::dvec3 to = to_light(light, glm::dvec3(0.0));
   M.face_bias.resize(shades.size());
-  M.toward.resize(shades.size());
   for (size_t t = 0; t < shades.size(); ++t) {
     const double* g = shades[t].g;
     M.face_bias[t] = map.face_bias(dot3(g[0], g[1], g[2], to.x, to.y, to.z));
-    M.toward[t] = M.face_bias[t] == M.face_bias[t] ? 1.f : 0.f;
   }
   return M;
 }

@@ -67,7 +67,6 @@ void surface_colours(const ShadeBatch& b, double ambient, float rgb[3][kShadeBat
 struct MapLookup {
   double e[3], f[3], r[3], u[3];  // QE, QF, QR, QU for Q = map column X, row Y, light depth z
   std::vector<double> face_bias;  // per TriangleShade; NaN: turned from the light
-  std::vector<float> toward;      // per TriangleShade: 1 where face_bias is a number, else 0
 };
 MapLookup map_lookup(const View& view, const ShadowMap& map, const Light& light,
                      const std::vector<TriangleShade>& shades);

@@ -139,16 +139,17 @@ struct SurfaceRenderer::Impl {
       S.ms_rays_build = rays->ms_build();
     }
     for (const Light& l : rs.lights) any_spot |= l.type == LightType::Spot;
-    if (!shadows) {  // directional lights without shadows: lit where the face turns to the light
-      facing.resize(L);
-      for (size_t l = 0; l < L; ++l) {
-        if (rs.lights[l].type != LightType::Directional) continue;
-        const glm::dvec3 to = to_light(rs.lights[l], glm::dvec3(0.0));
-        facing[l].resize(shades.size());
-        for (size_t t = 0; t < shades.size(); ++t) {
-          const double* g = shades[t].g;
-          facing[l][t] = (g[0] * to.x + g[1] * to.y) + g[2] * to.z > 0 ? 1.f : 0.f;
-        }
+    // Directional lights: 1 where the face turns to the light, else 0. The
+    // lit fraction without shadows, and in map tiles with no caster (the same
+    // c > 0 as ShadowMap::face_bias's).
+    facing.resize(L);
+    for (size_t l = 0; l < L; ++l) {
+      if (rs.lights[l].type != LightType::Directional) continue;
+      const glm::dvec3 to = to_light(rs.lights[l], glm::dvec3(0.0));
+      facing[l].resize(shades.size());
+      for (size_t t = 0; t < shades.size(); ++t) {
+        const double* g = shades[t].g;
+        facing[l][t] = (g[0] * to.x + g[1] * to.y) + g[2] * to.z > 0 ? 1.f : 0.f;
       }
     }
     if (!maps.empty()) make_lookups();
@@ -158,7 +159,7 @@ struct SurfaceRenderer::Impl {
   }
 
   std::vector<MapLookup> lookups;
-  std::vector<std::vector<float>> facing;  // per light (directional, no shadows), per projected triangle  // per light (directional lights with a map)
+  std::vector<std::vector<float>> facing;  // per light (directional ones), per projected triangle
 
   void make_lookups() {
     lookups.resize(maps.size());
@@ -246,7 +247,7 @@ struct SurfaceRenderer::Impl {
       } else if (shadows && light.type == LightType::Directional && rs.empty_tile_early_out &&
                  in_empty_tiles(l, b)) {
         // Every test passes: lit 1, or 0 where the face turns from the light.
-        facing_of(lookups[l].toward.data(), b.tri, n, lit);
+        facing_of(facing[l].data(), b.tri, n, lit);
         T.shadow_tests += uint64_t(covered);
         T.shadow_tests_empty += uint64_t(covered);
       } else if (shadows) {
