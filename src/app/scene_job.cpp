@@ -1,6 +1,7 @@
 #include "app/scene_job.h"
 
 #include "app/scene_jobs.h"
+#include "raster/tile_sink.h"
 
 namespace zs {
 
@@ -15,9 +16,7 @@ std::unique_ptr<SceneJob> make_scene_job(SceneInput& in, bool no_culling) {
 
 std::unique_ptr<TiledRenderer> render_frames(SceneJob& job, int frames, TileSink& sink, uint64_t extra_bytes,
                                              bool progress, std::vector<double>* frame_ms, TileSink* warmup) {
-  struct Discard : TileSink {
-    void tile(const TileRect&, const float*) override {}
-  } discard;
+  NullSink discard;
   std::unique_ptr<TiledRenderer> r;
   for (int f = 0; f < frames; ++f) {
     if (!job.overlap_frames()) r.reset();  // one frame's buffers at a time

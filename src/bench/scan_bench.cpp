@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "mesh/topology.h"
+#include "raster/tile_sink.h"
 #include "scene/scene.h"
 #include "scene/scene_input.h"
 #include "util/atomic_file.h"
@@ -60,10 +61,6 @@ struct DiffSink : TileSink {
       if (keep) std::copy(rgba, rgba + n, keep->at(t.x0, y));
     }
   }
-};
-
-struct NullSink : TileSink {
-  void tile(const TileRect&, const float*) override {}
 };
 
 }  // namespace

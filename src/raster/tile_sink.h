@@ -14,4 +14,9 @@ class TileSink {
   virtual void tile(const TileRect& r, const float* pixels) = 0;
 };
 
+// Keeps nothing: frames that are only timed, and tiles written in place.
+struct NullSink : TileSink {
+  void tile(const TileRect&, const float*) override {}
+};
+
 }  // namespace zs

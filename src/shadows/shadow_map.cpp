@@ -265,9 +265,7 @@ ShadowMap ShadowMap::build(const TriangleMesh& casters, const Light& light, cons
   // Each tile renders only the box of its casters (rounded out to whole
   // depth blocks) and writes it straight into its storage, which reads +inf
   // elsewhere; blocks outside the box keep their empty range.
-  struct NoCopy : TileSink {
-    void tile(const TileRect&, const float*) override {}
-  } sink;
+  NullSink sink;
   run_tiles(grid, busy, threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
     Tile& w = tiles.local();
     double lx = INFINITY, ly = INFINITY, hx = -INFINITY, hy = -INFINITY;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <type_traits>
 
 #include <glm/geometric.hpp>
 
@@ -240,6 +241,16 @@ void depth_range(const ShadeBatch& b, double* lo, double* hi) {
   *hi = std::bit_cast<double>(kmax ^ ((kmax >> 63) & kMag));
 }
 
+namespace {
+// One of a lookup's column, row or light depth (constants e, f, r, u of
+// MapLookup) for a pixel at (a, b) and depth s: map_inputs and map_range
+// evaluate the same expression, so the range bounds the pixels' values.
+template <bool perspective>
+inline double map_coord(double e, double f, double r, double u, double a, double b, double s) {
+  return perspective ? e + s * ((f + a * r) + b * u) : ((e + a * r) + b * u) + s * f;
+}
+}  // namespace
+
 void map_range(const MapLookup& M, bool perspective, double a0, double a1, double cb, double s0, double s1, double* x,
                double* y, double* z) {
   double* out[3] = {x, y, z};
@@ -247,9 +258,8 @@ void map_range(const MapLookup& M, bool perspective, double a0, double a1, doubl
     double lo = INFINITY, hi = -INFINITY;
     for (double a : {a0, a1})
       for (double s : {s0, s1}) {
-        // map_inputs' expressions.
-        const double v = perspective ? M.e[k] + s * ((M.f[k] + a * M.r[k]) + cb * M.u[k])
-                                     : ((M.e[k] + a * M.r[k]) + cb * M.u[k]) + s * M.f[k];
+        const double v = perspective ? map_coord<true>(M.e[k], M.f[k], M.r[k], M.u[k], a, cb, s)
+                                     : map_coord<false>(M.e[k], M.f[k], M.r[k], M.u[k], a, cb, s);
         lo = std::min(lo, v), hi = std::max(hi, v);
       }
     out[k][0] = lo, out[k][1] = hi;
@@ -262,22 +272,20 @@ void map_inputs(const MapLookup& M, bool perspective, int n, const double* __res
   const double* __restrict fb = M.face_bias.data();
   const double e0 = M.e[0], e1 = M.e[1], e2 = M.e[2], f0 = M.f[0], f1 = M.f[1], f2 = M.f[2];
   const double r0 = M.r[0], r1 = M.r[1], r2 = M.r[2], u0 = M.u[0], u1 = M.u[1], u2 = M.u[2];
-  if (perspective)
+  auto run = [&](auto persp) {
+    constexpr bool P = decltype(persp)::value;
     for (int i = 0; i < n; ++i) {
-      const double a = ca[i], b = cb, s = depth[i];
-      X[i] = e0 + s * ((f0 + a * r0) + b * u0);
-      Y[i] = e1 + s * ((f1 + a * r1) + b * u1);
-      const double z = e2 + s * ((f2 + a * r2) + b * u2);
+      const double a = ca[i], s = depth[i];
+      X[i] = map_coord<P>(e0, f0, r0, u0, a, cb, s);
+      Y[i] = map_coord<P>(e1, f1, r1, u1, a, cb, s);
+      const double z = map_coord<P>(e2, f2, r2, u2, a, cb, s);
       lim[i] = z - (fb[tri[i]] + std::abs(z) * 0x1p-20);  // shadow_map.h's bias_total
     }
+  };
+  if (perspective)
+    run(std::true_type{});
   else
-    for (int i = 0; i < n; ++i) {
-      const double a = ca[i], b = cb, s = depth[i];
-      X[i] = ((e0 + a * r0) + b * u0) + s * f0;
-      Y[i] = ((e1 + a * r1) + b * u1) + s * f1;
-      const double z = ((e2 + a * r2) + b * u2) + s * f2;
-      lim[i] = z - (fb[tri[i]] + std::abs(z) * 0x1p-20);
-    }
+    run(std::false_type{});
 }
 
 }  // namespace zs
