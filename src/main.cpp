@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "mpi/mpi_env.h"
+#include "util/temp_registry.h"
 
 int main(int argc, char** argv) {
 #if defined(__GLIBC__)
@@ -21,6 +22,9 @@ int main(int argc, char** argv) {
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
 #endif
+  // Ctrl-C, kill, a closed terminal or a crash: remove the temporaries of
+  // unfinished outputs (docs/robustness.md) before dying of the signal.
+  zs::install_temp_cleanup();
   CLI::App app{"zsweep: direct volume rendering of tetrahedral meshes (ZSweep lineage)"};
   app.set_version_flag("--version", "zsweep 0.1.0");
   app.require_subcommand(1);

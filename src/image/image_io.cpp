@@ -1,11 +1,14 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <string>
 #include <vector>
 #include <stdexcept>
 
 #include "image/image.h"
+#include "image/pixel_quantize.h"
 #include "util/atomic_file.h"
 
 namespace zs {
@@ -34,20 +37,31 @@ void write_image(const std::string& path, const Image& img, const std::string& c
   OIIO::ImageSpec spec(int(img.width), int(img.height), 4, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
   if (!comp.empty()) spec.attribute("compression", comp);
   spec.attribute("oiio:ColorSpace", "Linear");
-  // Store our values as they are: OIIO would otherwise un-premultiply
-  // before writing a PNG (whose alpha is unassociated by definition).
+  // Store our values as they are (8-bit ones already straight,
+  // pixel_quantize.h): OIIO would otherwise convert them itself.
   spec.attribute("oiio:UnassociatedAlpha", 1);
-  if (!file->open(out.temp_path(), spec)) throw std::runtime_error(path + ": cannot write: " + file->geterror());
+  // Messages name the output, not its temporary, and say why.
+  const auto fail = [&] {
+    const int err = errno;
+    std::string e = out.name_final(file->geterror());
+    std::replace(e.begin(), e.end(), '\n', ' ');
+    if (err != 0 && e.find(std::strerror(err)) == std::string::npos)
+      e += (e.empty() ? "" : ": ") + std::string(std::strerror(err));
+    throw std::runtime_error(path + ": cannot write: " + e);
+  };
+  errno = 0;
+  if (!file->open(out.temp_path(), spec)) fail();
   bool ok;
+  errno = 0;
   if (is_float) {
     ok = file->write_image(OIIO::TypeDesc::FLOAT, img.rgba.data());
   } else {
-    // Same values as the float image, quantized; no gamma (scene spec).
+    // The float image with straight alpha, quantized; no gamma (scene spec).
     std::vector<uint8_t> q(img.rgba.size());
-    for (size_t i = 0; i < q.size(); ++i) q[i] = uint8_t(std::clamp(img.rgba[i], 0.f, 1.f) * 255.f + 0.5f);
+    for (size_t i = 0; i < q.size(); i += 4) quantize_straight(&img.rgba[i], &q[i]);
     ok = file->write_image(OIIO::TypeDesc::UINT8, q.data());
   }
-  if (!ok || !file->close()) throw std::runtime_error(path + ": cannot write: " + file->geterror());
+  if (!ok || !file->close()) fail();
   out.commit();
 }
 
@@ -62,9 +76,15 @@ Image read_image(const std::string& path) {
   std::vector<float> buf(size_t(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buf.data()))
     throw std::runtime_error(path + ": cannot read image: " + in->geterror());
-  for (size_t p = 0; p < size_t(spec.width) * spec.height; ++p)
+  // 8-bit formats hold straight alpha (as zsweep writes them); the float
+  // ones premultiplied, like our images.
+  const std::string fmt = in->format_name();
+  const bool straight = spec.nchannels >= 4 && fmt != "openexr" && fmt != "tiff";
+  for (size_t p = 0; p < size_t(spec.width) * spec.height; ++p) {
     for (int c = 0; c < 4; ++c)
       img.rgba[p * 4 + c] = c < spec.nchannels ? buf[p * spec.nchannels + c] : (c == 3 ? 1.f : 0.f);
+    if (straight) premultiply(&img.rgba[p * 4]);
+  }
   return img;
 }
 

@@ -1,6 +1,7 @@
 #include "image/tile_writer.h"
 
 #include "image/image.h"
+#include "image/pixel_quantize.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -26,10 +27,6 @@ std::string one_line(std::string s) {
   while (!s.empty() && s.back() == ' ') s.pop_back();
   return s.empty() ? std::string("unknown error") : s;
 }
-
-// Exactly write_image()'s quantization (image_io.cpp): premultiplied values
-// as they are, no gamma, round half up. The tests hold the two byte-equal.
-inline uint8_t quantize(float v) { return uint8_t(std::clamp(v, 0.f, 1.f) * 255.f + 0.5f); }
 
 // Above this a classic TIFF's 32-bit offsets may overflow (compression
 // cannot be counted on), so the file is written as BigTIFF.
@@ -180,6 +177,11 @@ struct ImageTileWriter::Impl {
   uint32_t next_row = 0;           // first tile row not yet written
   uint64_t held = 0, peak = 0;
   bool committed = false;
+  // A write failed: the file library may be left mid-call (OpenEXR keeps a
+  // tile buffer's semaphore taken, and the next write_tiles waits on it
+  // forever), so no further tile goes to it; later tiles get the first
+  // error again (whichever thread's error the render reports, it is this).
+  std::string failure;
 
   Impl(const std::string& p, const TileGrid& g, const std::string& compression, const std::vector<std::string>& names)
       : path(p), grid(g), out(p) {
@@ -220,7 +222,8 @@ struct ImageTileWriter::Impl {
       if (proxy->open_error()) throw std::runtime_error(path + ": cannot write: " + std::strerror(proxy->open_error()));
       file->set_ioproxy(proxy.get());
     }
-    if (!file->open(out.temp_path(), spec)) throw std::runtime_error(path + ": cannot write: " + one_line(file->geterror()));
+    errno = 0;
+    if (!file->open(out.temp_path(), spec)) fail("cannot write");
     if (proxy) header_writes = proxy->writes();
     layout.random_order = tiled && file->supports("random_access");
     received.assign(grid.count(), false);
@@ -250,9 +253,17 @@ struct ImageTileWriter::Impl {
 
   uint64_t pixel_bytes() const { return layout.pixel_bytes(); }
 
+  // The library's message, naming the output rather than its temporary,
+  // and the system's reason when the library gave none (libtiff says only
+  // "Write error at scanline N"); callers clear errno before the call.
   [[noreturn]] void fail(const std::string& what) {
+    const int err = errno;
     std::string e = file ? file->geterror() : std::string();
-    throw std::runtime_error(path + ": " + what + (e.empty() ? "" : ": " + one_line(e)));
+    e = e.empty() ? std::string() : out.name_final(one_line(e));
+    if (err != 0 && e.find(std::strerror(err)) == std::string::npos)
+      e += (e.empty() ? "" : ": ") + std::string(std::strerror(err));
+    failure = path + ": " + what + (e.empty() ? "" : ": " + e);
+    throw std::runtime_error(failure);
   }
 
   void check_rect(const TileRect& r) const {
@@ -286,8 +297,8 @@ struct ImageTileWriter::Impl {
         std::memcpy(b.data.data() + dst * pixel_bytes(), src, w * pixel_bytes());
       } else {
         uint8_t* d = b.data.data() + dst * 4;
-        for (size_t i = 0; i < w; ++i)
-          for (size_t k = 0; k < 4; ++k) d[i * 4 + k] = quantize(src[i * gc + k]);
+        // Exactly write_image()'s pixels: straight alpha (pixel_quantize.h).
+        for (size_t i = 0; i < w; ++i) quantize_straight(src + i * gc, d + i * 4);
       }
     }
     --b.tiles_left;
@@ -300,11 +311,15 @@ struct ImageTileWriter::Impl {
          it = bands.find(next_row)) {
       const int y0 = int(next_row * grid.size), y1 = int(std::min(y0 + grid.size, grid.height));
       const void* data = it->second.data.data();
+      errno = 0;
       const bool ok = layout.tiled ? file->write_tiles(0, int(grid.width), y0, y1, 0, 1, type, data)
                             : file->write_scanlines(y0, y1, 0, type, data);
       if (!ok) fail("cannot write");
       // Stop a long render at the first failed write (a full disk), not at commit.
-      if (proxy && proxy->failed()) throw std::runtime_error(path + ": cannot write: " + proxy->finish());
+      if (proxy && proxy->failed()) {
+        failure = path + ": cannot write: " + proxy->finish();
+        throw std::runtime_error(failure);
+      }
       held -= it->second.data.size();
       bands.erase(it);
       ++next_row;
@@ -313,6 +328,7 @@ struct ImageTileWriter::Impl {
 
   void tile(const TileRect& r, const float* rgba) {
     if (committed) throw std::runtime_error(path + ": tile after commit");
+    if (!failure.empty()) throw std::runtime_error(failure);
     check_rect(r);
     const uint32_t id = (r.y0 / grid.size) * grid.cols() + r.x0 / grid.size;
     if (received[id])
@@ -320,6 +336,7 @@ struct ImageTileWriter::Impl {
                                ") delivered twice");
     if (layout.random_order) {
       // write_tiles, unlike write_tile, takes an edge tile at its real size.
+      errno = 0;
       if (!file->write_tiles(int(r.x0), int(r.x1), int(r.y0), int(r.y1), 0, 1, OIIO::TypeDesc::FLOAT, rgba))
         fail("cannot write");
     } else {
@@ -335,6 +352,7 @@ struct ImageTileWriter::Impl {
     if (received_count != grid.count())
       throw std::runtime_error(path + ": " + std::to_string(grid.count() - received_count) + " of " +
                                std::to_string(grid.count()) + " tiles were never rendered; nothing written");
+    errno = 0;
     if (!file->close()) fail("cannot write");
     file.reset();
     if (proxy) {

@@ -5,11 +5,13 @@
 #include <cstring>
 #include <filesystem>
 #include <random>
+#include <utility>
 
 #include <fcntl.h>
 #include <unistd.h>
 
 #include "util/file_error.h"
+#include "util/temp_registry.h"
 
 namespace zs {
 
@@ -22,6 +24,12 @@ AtomicFile::AtomicFile(std::string final_path) : final_(std::move(final_path)) {
   // Insert the tag before the extension: out.vtu -> out.zs-tmp-123-45.vtu
   fs::path tmp = p.parent_path() / (p.stem().string() + tag + p.extension().string());
   temp_ = tmp.string();
+  slots_[0] = register_temp_file(temp_);
+  // TetGen writes <base>.node and <base>.ele from one base name.
+  if (p.extension() == ".node" || p.extension() == ".ele") {
+    slots_[1] = register_temp_file(fs::path(tmp).replace_extension(".node").string());
+    slots_[2] = register_temp_file(fs::path(tmp).replace_extension(".ele").string());
+  }
 }
 
 AtomicFile::~AtomicFile() {
@@ -32,6 +40,7 @@ AtomicFile::~AtomicFile() {
     fs::path t(temp_);
     for (const char* ext : {".node", ".ele"}) fs::remove(fs::path(t).replace_extension(ext), ec);
   }
+  for (int s : slots_) unregister_temp_file(s);
 }
 
 void AtomicFile::check_writable() const {
@@ -43,11 +52,22 @@ void AtomicFile::check_writable() const {
   ::unlink(temp_.c_str());
 }
 
+std::string AtomicFile::name_final(std::string message) const {
+  const auto replace_all = [&message](const std::string& from, const std::string& to) {
+    for (size_t at = 0; !from.empty() && (at = message.find(from, at)) != std::string::npos; at += to.size())
+      message.replace(at, from.size(), to);
+  };
+  replace_all(temp_, final_);
+  replace_all(fs::path(temp_).filename().string(), fs::path(final_).filename().string());
+  return message;
+}
+
 void AtomicFile::commit() {
   if (std::rename(temp_.c_str(), final_.c_str()) != 0) {
     throw FileError(final_, std::string("cannot write: ") + std::strerror(errno));
   }
   committed_ = true;
+  for (int& s : slots_) unregister_temp_file(std::exchange(s, -1));
 }
 
 }  // namespace zs

@@ -1,5 +1,6 @@
 // Write-then-rename, so a failed or interrupted write never leaves a partial
-// output file under the user's name.
+// output file under the user's name. The temporary is registered
+// (util/temp_registry.h) so that a fatal signal removes it too.
 #pragma once
 
 #include <string>
@@ -22,12 +23,17 @@ class AtomicFile {
   // (no such directory, no permission, a directory under the final name)
   // fails before the work that would fill it. Throws FileError.
   void check_writable() const;
+  // A library's error message with the temporary's name (whole path, or
+  // file name alone) replaced by the final one: the user never chose the
+  // temporary's name, so messages name the output.
+  std::string name_final(std::string message) const;
   // Renames the temporary onto the final name; throws FileError on failure.
   void commit();
 
  private:
   std::string final_, temp_;
   bool committed_ = false;
+  int slots_[3] = {-1, -1, -1};  // temp_registry slots: the temporary, and TetGen's .node/.ele pair
 };
 
 }  // namespace zs

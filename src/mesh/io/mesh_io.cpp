@@ -58,7 +58,11 @@ void write_mesh(const std::string& path, const TetMesh& m) {
     // Two files from one base; write both under temporary names, then rename.
     AtomicFile node(fs::path(path).replace_extension(".node").string());
     AtomicFile ele(fs::path(path).replace_extension(".ele").string());
-    write_tetgen(node.temp_path(), m);
+    try {
+      write_tetgen(node.temp_path(), m);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(ele.name_final(node.name_final(e.what())));
+    }
     // write_tetgen wrote <tmpbase>.node and <tmpbase>.ele; the ele temp name
     // differs from AtomicFile's pick, so move it there first.
     fs::rename(fs::path(node.temp_path()).replace_extension(".ele"), ele.temp_path());
@@ -67,11 +71,13 @@ void write_mesh(const std::string& path, const TetMesh& m) {
     return;
   }
   AtomicFile out(path);
-  switch (f) {
-    case MeshFormat::Off: write_off(out.temp_path(), m); break;
-    case MeshFormat::Vtu: write_vtu(out.temp_path(), m); break;
-    default:
-      throw FileError(path, "cannot write this format (expected .off, .vtu or .node/.ele)");
+  if (f != MeshFormat::Off && f != MeshFormat::Vtu)
+    throw FileError(path, "cannot write this format (expected .off, .vtu or .node/.ele)");
+  try {
+    if (f == MeshFormat::Off) write_off(out.temp_path(), m);
+    else write_vtu(out.temp_path(), m);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(out.name_final(e.what()));  // name the output, not its temporary
   }
   out.commit();
 }

@@ -179,6 +179,7 @@ void write_tetgen(const std::string& path, const TetMesh& m) {
   std::vector<char> buf(base.begin(), base.end());
   buf.push_back('\0');
   std::string out;
+  errno = 0;
   {
     StdioCapture cap;
     try {
@@ -194,6 +195,18 @@ void write_tetgen(const std::string& path, const TetMesh& m) {
     if (!fs::exists(f, ec) || out.find("Cannot create") != std::string::npos)
       throw FileError(f, tetgen_error_line(out, "cannot write"));
   }
+  // Nor do they check their writes: a full disk or a file size limit
+  // leaves short files behind a success. Read them back and compare.
+  const int write_errno = errno;
+  bool whole = false;
+  try {
+    const TetMesh back = read_tetgen(node_file);
+    whole = back.points.size() == m.points.size() && back.tets.size() == m.tets.size();
+  } catch (const std::exception&) {
+  }
+  if (!whole)
+    throw FileError(path, std::string("cannot write: the files came out incomplete") +
+                              (write_errno ? std::string(": ") + std::strerror(write_errno) : std::string()));
 }
 
 }  // namespace zs

@@ -11,6 +11,9 @@
 
 #include <filesystem>
 
+#include <cerrno>
+#include <cstring>
+
 #include "mesh/io/vtk_capture.h"
 #include "mesh/io/vtk_io.h"
 #include "util/file_error.h"
@@ -70,9 +73,13 @@ void write_vtu(const std::string& path, const TetMesh& m) {
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary, not base64
   writer->SetCompressorTypeToNone();
+  errno = 0;
   const int ok = writer->Write();
+  const int write_errno = errno;
   if (!ok || capture.has_error()) {
-    std::string why = capture.first_error();
+    // The system's reason when there is one (a full disk): VTK's own
+    // message is a dump of its pipeline request.
+    std::string why = write_errno ? std::string(std::strerror(write_errno)) : capture.first_error();
     std::error_code ec;
     std::filesystem::remove(path, ec);  // never leave a partial file
     throw FileError(path, "cannot write VTU file" + (why.empty() ? std::string() : ": " + why));
