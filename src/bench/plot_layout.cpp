@@ -149,7 +149,7 @@ PlotLayout layout_plot(const PlotSpec& spec, const std::vector<PlotSeries>& seri
   }
 
   // Margins: the y tick labels on the left, the legend on the right.
-  constexpr int kTick = 12, kLegend = 13, kPoint = 10;
+  constexpr int kTick = 12, kLegend = 13, kPoint = 10, kPointGap = 3;
   double yl_width = 0, legend_width = 0;
   for (const auto& s : yl) yl_width = std::max(yl_width, measure(s, kTick).x1);
   for (const auto& s : series) legend_width = std::max(legend_width, measure(s.name, kLegend).x1);
@@ -159,10 +159,13 @@ PlotLayout layout_plot(const PlotSpec& spec, const std::vector<PlotSeries>& seri
   L.bottom = H - 70;
 
   std::vector<TextBox> taken;
-  auto free = [&](const TextBox& b) {
+  // `gap`: pixels kept clear around the box, so that neighbours do not read
+  // as one word.
+  auto free = [&](const TextBox& b, double gap) {
     if (b.x0 < 0 || b.y0 < 0 || b.x1 > W || b.y1 > H) return false;
+    const TextBox g{b.x0 - gap, b.y0 - gap, b.x1 + gap, b.y1 + gap};
     for (const TextBox& t : taken)
-      if (b.overlaps(t)) return false;
+      if (g.overlaps(t)) return false;
     return true;
   };
   // Positions are whole pixels, as they are drawn; `force` places even over
@@ -172,7 +175,7 @@ PlotLayout layout_plot(const PlotSpec& spec, const std::vector<PlotSeries>& seri
     t.text = s, t.size = size, t.role = role, t.series = si;
     t.x = std::round(x), t.y = std::round(y);
     t.box = at(measure(s, size), t.x, t.y);
-    if (!force && !free(t.box)) return false;
+    if (!force && !free(t.box, role == TextRole::Point ? kPointGap : 0)) return false;
     taken.push_back(t.box);
     L.texts.push_back(t);
     return true;
@@ -233,13 +236,13 @@ PlotLayout layout_plot(const PlotSpec& spec, const std::vector<PlotSeries>& seri
       if (s.labels[k].empty() || !L.drawable(s.x[k], s.y[k])) continue;
       const double X = std::round(L.px(s.x[k])), Y = std::round(L.py(s.y[k]));
       const TextBox e = measure(s.labels[k], kPoint);
-      const double w = e.x1 - e.x0, h = e.y1 - e.y0, step = h + 3;
+      const double w = e.x1 - e.x0, h = e.y1 - e.y0, step = h + kPointGap + 1;
       bool placed = false;
       for (int ring = 0; !placed && ring * step <= L.bottom - L.top; ++ring)
         for (int sign : {-1, 1}) {
           if (placed || (ring == 0 && sign > 0)) continue;
           for (int side = 0; side < 2 && !placed; ++side) {
-            const double bx0 = side == 0 ? X + 6 : X - 6 - w, by0 = Y + sign * ring * step - h / 2;
+            const double bx0 = side == 0 ? X + 4 + kPointGap : X - 3 - kPointGap - w, by0 = Y + sign * ring * step - h / 2;
             const double x = std::round(bx0 - e.x0), y = std::round(by0 - e.y0);
             const TextBox b = at(e, x, y);
             if (b.x0 < inside.x0 || b.y0 < inside.y0 || b.x1 > inside.x1 || b.y1 > inside.y1) continue;
