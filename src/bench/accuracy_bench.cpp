@@ -12,6 +12,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "bench/bench_inputs.h"
 #include "bench/line_plot.h"
 #include "image/image_compare.h"
 #include "mesh/topology.h"
@@ -23,10 +24,6 @@
 namespace zs {
 
 namespace {
-
-std::string scene_name(const std::string& input) {
-  return input == "default" ? "default" : std::filesystem::path(input).stem().string();
-}
 
 // Bilinear resampling to the compared size: what a user gets by previewing
 // at a lower resolution and looking at it full size.
@@ -101,11 +98,14 @@ std::vector<AccuracyRow> run_accuracy_bench(const AccuracyBenchOptions& opt) {
   auto ms_since = [](Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
   };
+  check_volume_inputs(opt.inputs, "bench accuracy", true);  // all of them, before the first is measured
+  const std::vector<std::string> names = bench_row_names(opt.inputs);
   std::vector<AccuracyRow> rows;
-  for (const std::string& input : opt.inputs) {
+  for (size_t i = 0; i < opt.inputs.size(); ++i) {
+    const std::string& input = opt.inputs[i];
     SceneInput base = load_scene_input(input == "default" ? "" : input, {});
     const Topology topo = build_topology(base.mesh);
-    const std::string name = scene_name(input);
+    const std::string& name = names[i];
     for (uint32_t size : opt.sizes) {
       SceneInput in = base;  // the automatic camera depends on the size
       in.scene.settings.width = in.scene.settings.height = size;

@@ -10,6 +10,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "bench/bench_inputs.h"
 #include "mesh/topology.h"
 #include "raster/tile_sink.h"
 #include "scene/scene.h"
@@ -44,8 +45,6 @@ TransferFunction bench_tf(const TetMesh& m) {
   return TransferFunction(d.color_points(), {{lo, 0.05}, {hi, 0.6}}, d.unit_distance());
 }
 
-std::string stem(const std::string& p) { return std::filesystem::path(p).stem().string(); }
-
 // Compares tiles against a reference image without keeping a second one.
 struct DiffSink : TileSink {
   const Image* ref = nullptr;
@@ -66,14 +65,16 @@ struct DiffSink : TileSink {
 }  // namespace
 
 std::vector<ScanBenchRow> run_scan_bench(const ScanBenchOptions& opt) {
+  check_volume_inputs(opt.inputs, "bench scan", false);  // all of them, before the first is measured
+  const std::vector<std::string> names = bench_row_names(opt.inputs);
   std::vector<ScanBenchRow> rows;
   const uint64_t budget = opt.memory_budget_bytes ? opt.memory_budget_bytes : default_memory_budget();
-  for (const std::string& input : opt.inputs) {
-    const SceneInput in = load_scene_input(input, {});
+  for (size_t i = 0; i < opt.inputs.size(); ++i) {
+    const SceneInput in = load_scene_input(opt.inputs[i], {});
     const Scene& scene = in.scene;
     const TetMesh& mesh = in.mesh;
     const Topology topo = build_topology(mesh);
-    const std::string name = stem(input);
+    const std::string& name = names[i];
     for (uint32_t size : opt.sizes) {
       RenderSettings rs = scene.settings;
       rs.width = rs.height = size;

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/accuracy_bench.h"
+#include "bench/bench_inputs.h"
 #include "bench/scan_bench.h"
 #include "cli/commands.h"
 
@@ -53,7 +54,9 @@ void add_bench_command(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* scan = bench->add_subcommand("scan", "Scan-convert strategies: the seed's B-Convert experiment");
-  scan->add_option("inputs", a->inputs, "Scene .json files or meshes (camera: rotation 0, mesh filling the image)")
+  scan->add_option("inputs", a->inputs, "Volume scene .json files or tet meshes (camera: rotation 0, mesh filling the image). "
+                 "Rows are named by the file's stem; inputs sharing a stem by their file names "
+                 "(spx.json, spx.off), the same name twice with -2, -3 on the later ones")
       ->required();
   scan->add_option("--sizes", a->sizes, "Comma-separated image sizes")->capture_default_str();
   scan->add_option("--strategies", a->strategies, "bbox,bconvert,span")->capture_default_str();
@@ -88,6 +91,7 @@ void add_bench_command(CLI::App& app) {
     o.repeat = a->repeat;
     o.raster_only_above = a->raster_only_above;
     o.memory_budget_bytes = uint64_t(a->memory_budget_mb * 1048576.0);
+    check_bench_outputs(o.csv, o.plots_dir);  // not after minutes of measuring
     const auto rows = run_scan_bench(o);
     write_scan_bench_csv(o.csv, rows);
     if (!o.plots_dir.empty()) write_scan_bench_report(o.plots_dir, rows);
@@ -107,7 +111,8 @@ void add_bench_accuracy_command(CLI::App& bench) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* acc = bench.add_subcommand("accuracy", "Speed vs accuracy: every ZSweep setting against the reference");
-  acc->add_option("inputs", a->inputs, "Scene .json files, meshes, or 'default' (the embedded scene)")->required();
+  acc->add_option("inputs", a->inputs, "Volume scene .json files, tet meshes, or 'default' (the embedded scene). "
+                 "Rows are named as in bench scan: the stem, or the file name where two share a stem")->required();
   acc->add_option("--sizes", a->sizes, "Comma-separated image sizes")->capture_default_str();
   acc->add_option("--groups", a->groups, "Axes to measure")->capture_default_str();
   acc->add_option("--csv", a->csv, "Output CSV")->required();
@@ -126,6 +131,7 @@ void add_bench_accuracy_command(CLI::App& bench) {
     o.plots_dir = a->plots;
     o.repeat = a->repeat;
     o.threads = a->threads;
+    check_bench_outputs(o.csv, o.plots_dir);  // not after minutes of measuring
     const auto rows = run_accuracy_bench(o);
     write_accuracy_csv(o.csv, rows);
     if (!o.plots_dir.empty()) write_accuracy_plots(o.plots_dir, rows);
@@ -144,6 +150,7 @@ void add_bench_report_command(CLI::App& bench) {
   rep->add_option("csvs", a->csvs, "CSV files written by `zsweep bench scan`")->required();
   rep->add_option("--plots", a->plots, "Output directory for tables.md and PNG plots")->required();
   rep->callback([a] {
+    check_bench_outputs("", a->plots);
     std::vector<ScanBenchRow> rows;
     for (const auto& c : a->csvs) {
       auto r = read_scan_bench_csv(c);
