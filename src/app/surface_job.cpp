@@ -46,7 +46,8 @@ class SurfaceJob : public SceneJob {
       out += ", " + std::to_string(turned) + " closed surface" + (turned == 1 ? "" : "s") +
              " wound inward turned outward";
     if (in_.ground_lowered_by > 0) {
-      std::snprintf(line, sizeof line, ", ground lowered %.3g below the mesh's lowest y (a level face there would fight it)",
+      std::snprintf(line, sizeof line,
+                    ", ground lowered %.3g below the mesh's lowest y (a level face there would fight it)",
                     in_.ground_lowered_by);
       out += line;
     }
