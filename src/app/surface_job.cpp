@@ -1,5 +1,7 @@
 // Surface scenes: the z-buffer surface renderer with shadows (src/surface/).
+#include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "app/scene_jobs.h"
 #include "surface/surface_renderer.h"
@@ -36,7 +38,20 @@ class SurfaceJob : public SceneJob {
                                        st.project.degenerate),
                   (unsigned long long)st.project.triangles, (unsigned long long)st.tiles.rendered_pixels, lights,
                   lights == 1 ? "" : "s", total_ms);
-    return line;
+    std::string out = line;
+    // What loading changed, so an image that differs from the file's own
+    // winding or the ground's usual place is never a surprise.
+    const size_t turned = in_.surface_solids.inward;
+    if (turned)
+      out += ", " + std::to_string(turned) + " closed surface" + (turned == 1 ? "" : "s") +
+             " wound inward turned outward";
+    if (in_.ground_lowered_by > 0) {
+      std::snprintf(line, sizeof line,
+                    ", ground lowered %.3g below the mesh's lowest y (a level face there would fight it)",
+                    in_.ground_lowered_by);
+      out += line;
+    }
+    return out;
   }
   std::string empty_reason(const TiledRenderer& r) const override {
     return of(r).stats().tiles.rendered_pixels ? "" : "no triangle is in front of the camera and in view";
@@ -75,6 +90,7 @@ nlohmann::json SurfaceJob::stats(const TiledRenderer& r, const FrameReport& f) c
                     {"texel", m.texel},
                     {"side", m.side}});
   const ShadowSettings& sh = rs.shadows;
+  const size_t two_sided = size_t(std::count(in.surface.two_sided.begin(), in.surface.two_sided.end(), uint8_t(1)));
   nlohmann::json j = {
       {"renderer", "surfaces"},
       {"time_ms",
@@ -93,9 +109,21 @@ nlohmann::json SurfaceJob::stats(const TiledRenderer& r, const FrameReport& f) c
         {"view_culled", S.project.view_culled},
         {"near_clipped", S.project.near_clipped},
         {"degenerate", S.project.degenerate},
+        {"back_faces_two_sided", S.project.back_two_sided},
         {"polygons_split_on_read", in.surface_polygons_split},
         {"elements_dropped_on_read", in.surface_elements_dropped}}},
       {"culling", {{"back_face", rs.cull_back}, {"view", rs.cull_view}}},
+      // Closed solids are one-sided (wound inward: turned outward at load);
+      // open surfaces are two-sided, never back-face culled.
+      {"orientation",
+       {{"components", in.surface_solids.components},
+        {"closed_solids", in.surface_solids.closed},
+        {"turned_outward", in.surface_solids.inward},
+        {"two_sided_triangles", two_sided}}},
+      {"ground",
+       {{"enabled", in.scene.surfaces.ground},
+        {"height", in.scene.surfaces.ground_height},
+        {"lowered_by", in.ground_lowered_by}}},
       {"bin_entries", S.bin_entries},
       {"triangles_scanned", T.triangles_scanned},
       {"fragments", T.fragments},

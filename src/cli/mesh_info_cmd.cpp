@@ -1,5 +1,6 @@
 // `zsweep mesh info [MESH] [--json]`: counts, topology and validation report;
-// for sphere files (.pdb/.ent/.sph/.sphb) the sphere report of sphere_info.h.
+// for sphere files (.pdb/.ent/.sph/.sphb) the sphere report of sphere_info.h,
+// for triangle surfaces the surface report of surface_info.h.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,9 +15,11 @@
 #include "cli/commands.h"
 #include "cli/mesh_source.h"
 #include "cli/sphere_info.h"
+#include "cli/surface_info.h"
 #include "mesh/topology.h"
 #include "mesh/validate.h"
 #include "spheres/sphere_io.h"
+#include "surfaces/io/surface_reader.h"
 
 namespace zs {
 
@@ -112,6 +115,7 @@ void add_mesh_info_command(CLI::App& mesh) {
       ->capture_default_str();
   cmd->callback([args] {
     if (is_sphere_file(args->src.path)) return print_sphere_info(args->src.path, args->json);
+    if (is_surface_file(args->src.path)) return print_surface_info(args->src.path, args->json);
     const TetMesh m = args->src.load();
     const auto t0 = std::chrono::steady_clock::now();
     const Topology topo = build_topology(m);

@@ -10,6 +10,7 @@
 #include "mesh/tet_mesh.h"
 #include "scene/scene.h"
 #include "spheres/sphere_set.h"
+#include "surfaces/closed_solids.h"
 #include "surfaces/triangle_mesh.h"
 
 namespace zs {
@@ -23,6 +24,8 @@ struct SceneInput {
   SphereSet spheres;   // sphere scenes (radii already scaled by spheres.radius_scale)
   TriangleMesh surface;  // surface scenes: every surface, transformed, then the ground; point normals set
   uint64_t surface_polygons_split = 0, surface_elements_dropped = 0;
+  SolidCounts surface_solids;     // before turning inward-wound solids outward (load_surfaces)
+  double ground_lowered_by = 0;   // automatic ground: gap below the lowest y (0: at it)
   double ms_load = 0;
 };
 

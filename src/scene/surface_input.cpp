@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "surfaces/closed_solids.h"
+#include "surfaces/ground_height.h"
 #include "surfaces/io/surface_reader.h"
 
 namespace zs {
@@ -37,12 +38,21 @@ void load_surfaces(SceneInput& in, const std::map<std::string, TriangleMesh>* da
     for (glm::dvec3& p : m.points) p = e.translate + rotate(e.scale * p, e.rotate_deg);
     append_mesh(all, m, uint32_t(i));
   }
+  // Inward-wound solids would show their insides; open surfaces are drawn
+  // from both sides instead (closed_solids.h).
+  in.surface_solids = turn_solids_outward(all);
+  std::vector<int8_t> solid = all.solid;
+  const size_t n = all.num_tris();
   if (ss.ground) {
     const Bounds b = triangle_bounds(all);
     const glm::dvec3 c = b.centre();
     const double ext = b.empty ? 1.0 : std::max({b.hi.x - b.lo.x, b.hi.z - b.lo.z, 1e-300});
-    const double h = ss.ground_auto_height ? (b.empty ? 0.0 : b.lo.y) : ss.ground_height;
-    if (ss.ground_auto_height) ss.ground_height = h;
+    if (ss.ground_auto_height) {
+      const GroundPlacement g = auto_ground_height(all);
+      ss.ground_height = g.height;
+      in.ground_lowered_by = g.lowered ? g.gap : 0.0;
+    }
+    const double h = ss.ground_height;
     const double s = 2.0 * ext;  // half side
     TriangleMesh g;
     g.points = {{c.x - s, h, c.z - s}, {c.x + s, h, c.z - s}, {c.x + s, h, c.z + s}, {c.x - s, h, c.z + s}};
@@ -51,7 +61,11 @@ void load_surfaces(SceneInput& in, const std::map<std::string, TriangleMesh>* da
     append_mesh(all, g, uint32_t(ss.surfaces.size()));
   }
   compute_point_normals(all);
-  all.solid = closed_solid_sides(all);
+  // The ground is open but one-sided: a floor, seen from above only.
+  solid.resize(all.num_tris(), 0);
+  all.solid = std::move(solid);
+  all.two_sided.assign(all.num_tris(), 0);
+  for (size_t t = 0; t < n; ++t) all.two_sided[t] = all.solid[t] == 0;
   in.surface = std::move(all);
 }
 

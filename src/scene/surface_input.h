@@ -5,11 +5,14 @@
 
 namespace zs {
 
-// Reads every surface, applies its transform, appends the ground square
-// and computes point normals into in.surface. The ground is a square of side
-// 4× the surfaces' largest horizontal extent (x, z), centred under them, at
-// ground.height or (automatic) the surfaces' lowest y, facing +y. A surface
-// whose path is a key of `data` is that mesh instead of a file.
+// Reads every surface, applies its transform, turns closed solids wound
+// inward outward and marks every other triangle two-sided (closed_solids.h),
+// appends the ground square and computes point normals into in.surface. The
+// ground is a square of side 4× the surfaces' largest horizontal extent
+// (x, z), centred under them, at ground.height or (automatic) the surfaces'
+// lowest y, a clear gap lower under a mesh lying flat there
+// (ground_height.h), facing +y and one-sided. A surface whose path is a key
+// of `data` is that mesh instead of a file.
 void load_surfaces(SceneInput& in, const std::map<std::string, TriangleMesh>* data = nullptr);
 
 // Perspective (or the given projection) camera looking at the surfaces'

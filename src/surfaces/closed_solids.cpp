@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -17,7 +18,7 @@ uint32_t find(std::vector<uint32_t>& parent, uint32_t a) {
 
 }  // namespace
 
-std::vector<int8_t> closed_solid_sides(const TriangleMesh& m) {
+std::vector<int8_t> closed_solid_sides(const TriangleMesh& m, SolidCounts* counts) {
   const size_t T = m.num_tris();
   std::vector<int8_t> side(T, 0);
   // Directed edges (from, to, triangle), sorted by their undirected key, so
@@ -62,12 +63,30 @@ std::vector<int8_t> closed_solid_sides(const TriangleMesh& m) {
     const glm::dvec3 a = m.points[m.tris[t][0]] - o, b = m.points[m.tris[t][1]] - o, c = m.points[m.tris[t][2]] - o;
     vol[r] += glm::dot(a, glm::cross(b, c));
   }
+  SolidCounts c;
   for (uint32_t t = 0; t < T; ++t) {
     const uint32_t r = find(parent, t);
-    if (bad[r] || !std::isfinite(vol[r]) || vol[r] == 0) continue;
-    side[t] = vol[r] > 0 ? 1 : -1;
+    const bool solid = !bad[r] && std::isfinite(vol[r]) && vol[r] != 0;
+    if (r == t) {
+      ++c.components;
+      c.closed += solid;
+      c.inward += solid && vol[r] < 0;
+    }
+    if (solid) side[t] = vol[r] > 0 ? 1 : -1;
   }
+  if (counts) *counts = c;
   return side;
+}
+
+SolidCounts turn_solids_outward(TriangleMesh& m) {
+  SolidCounts c;
+  m.solid = closed_solid_sides(m, &c);
+  for (size_t t = 0; t < m.num_tris(); ++t)
+    if (m.solid[t] < 0) {
+      std::swap(m.tris[t][1], m.tris[t][2]);
+      m.solid[t] = 1;
+    }
+  return c;
 }
 
 }  // namespace zs

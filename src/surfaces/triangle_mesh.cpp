@@ -18,6 +18,8 @@ void append_mesh(TriangleMesh& a, const TriangleMesh& b, uint32_t surface_id) {
   for (const auto& t : b.tris) a.tris.push_back({t[0] + base, t[1] + base, t[2] + base});
   a.surface.insert(a.surface.end(), b.tris.size(), surface_id);
   a.normals.clear();  // stale: recompute after the last append
+  a.solid.clear();
+  a.two_sided.clear();
 }
 
 glm::dvec3 face_normal(const TriangleMesh& m, size_t t) {

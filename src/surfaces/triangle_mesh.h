@@ -25,6 +25,10 @@ struct TriangleMesh {
   // Per triangle, closed_solid_sides (surfaces/closed_solids.h); empty when
   // not worked out (nothing is then assumed closed).
   std::vector<int8_t> solid;
+  // Per triangle: 1 where both sides can be seen (an open or inconsistently
+  // wound surface, not a closed solid), so back-face culling keeps it and it
+  // is shaded from the side seen; empty: every triangle one-sided.
+  std::vector<uint8_t> two_sided;
 
   size_t num_points() const { return points.size(); }
   size_t num_tris() const { return tris.size(); }

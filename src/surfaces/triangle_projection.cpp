@@ -49,6 +49,7 @@ void project_triangles(const TriangleMesh& m, const View& view, const ProjectOpt
       continue;
     }
     const auto& tri = m.tris[t];
+    const bool cull_back = opt.cull_back && !(m.two_sided.size() == m.num_tris() && m.two_sided[t]);
     const ScreenVertex v[3] = {out->verts[tri[0]], out->verts[tri[1]], out->verts[tri[2]]};
     if (!finite(v[0]) || !finite(v[1]) || !finite(v[2])) {
       ++c.degenerate;
@@ -65,10 +66,11 @@ void project_triangles(const TriangleMesh& m, const View& view, const ProjectOpt
         ++c.degenerate;
         continue;
       }
-      if (back && opt.cull_back) {
+      if (back && cull_back) {
         ++c.back_culled;
         continue;
       }
+      c.back_two_sided += back && opt.cull_back;
       if (opt.cull_view && outside(v)) {
         ++c.view_culled;
         continue;
@@ -123,7 +125,7 @@ void project_triangles(const TriangleMesh& m, const View& view, const ProjectOpt
       const ScreenVertex fan[3] = {sv[0], sv[k], sv[k + 1]};
       bool back;
       if (!consider(fan, &back)) continue;
-      if (back && opt.cull_back) continue;
+      if (back && cull_back) continue;
       if (opt.cull_view && outside(fan)) continue;
       out->corners.push_back({ids[0], ids[k], ids[k + 1]});
       out->source.push_back(uint32_t(t));

@@ -16,7 +16,7 @@
 namespace zs {
 
 struct ProjectOptions {
-  bool cull_back = true;   // drop triangles whose back faces the eye
+  bool cull_back = true;   // drop one-sided triangles whose back faces the eye (TriangleMesh::two_sided)
   bool cull_view = true;   // drop triangles with no pixel centre of the image in their box
   double z_near = 0;       // keep view depth >= z_near
   const std::vector<uint8_t>* skip = nullptr;  // per triangle: nonzero = leave out (counted as skipped)
@@ -25,6 +25,7 @@ struct ProjectOptions {
 struct ProjectCounts {
   uint64_t triangles = 0;     // in the mesh
   uint64_t back_culled = 0;   // facing away (cull_back)
+  uint64_t back_two_sided = 0;  // facing away but kept: two-sided (an open surface's other side)
   uint64_t view_culled = 0;   // outside the view volume: beside the image or behind z_near
   uint64_t near_clipped = 0;  // cut by the near plane (kept in part)
   uint64_t degenerate = 0;    // zero area or a non-finite point: nothing to draw
@@ -33,6 +34,7 @@ struct ProjectCounts {
     skipped += o.skipped;
     triangles += o.triangles;
     back_culled += o.back_culled;
+    back_two_sided += o.back_two_sided;
     view_culled += o.view_culled;
     near_clipped += o.near_clipped;
     degenerate += o.degenerate;

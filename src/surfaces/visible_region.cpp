@@ -27,7 +27,7 @@ void visible_region_points(const TriangleMesh& m, const View& view, double z_nea
   glm::dvec3 a[9], b[9];
   for (size_t t = 0; t < m.num_tris(); ++t) {
     int n = 3;
-    if (cull_back) {
+    if (cull_back && !(m.two_sided.size() == m.num_tris() && m.two_sided[t])) {
       // Back-facing: the eye is behind the triangle's plane (world space:
       // the camera basis r, u, f is left-handed).
       const glm::dvec3 nrm = face_normal(m, t);

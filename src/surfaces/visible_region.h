@@ -14,7 +14,8 @@
 namespace zs {
 
 // Calls `point` with every corner of every triangle's clipped polygon;
-// `cull_back`: skip triangles whose back faces the eye (they are invisible).
+// `cull_back`: skip one-sided triangles whose back faces the eye (they are
+// invisible; TriangleMesh::two_sided ones are not).
 void visible_region_points(const TriangleMesh& m, const View& view, double z_near, bool cull_back,
                            const std::function<void(const glm::dvec3&)>& point);
 

@@ -7,6 +7,7 @@
 #include "mesh/io/off_io.h"
 #include "mesh/io/tetgen_io.h"
 #include "mesh/io/vtk_io.h"
+#include "surfaces/io/surface_reader.h"
 #include "util/file_error.h"
 #include "util/atomic_file.h"
 
@@ -34,6 +35,11 @@ TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw FileError(path, "no such file");
   if (fs::is_directory(path, ec)) throw FileError(path, "is a directory, not a mesh file");
+  // Said before any reader runs: the tet OFF reader would otherwise stop at
+  // the keyword, and .obj/.ply/.stl be an unknown format.
+  if (is_surface_file(path))
+    throw FileError(path, "a triangle surface, not a tetrahedral mesh (this command takes tet meshes: .off without "
+                          "the OFF keyword, .vtu, .vtk, .node/.ele, PLOT3D; render and mesh info take surfaces)");
   switch (format_of(path, opt)) {
     case MeshFormat::Off:
       return read_off(path);
