@@ -20,6 +20,7 @@ TetMesh run(const ShapeMeshOptions& opt, const ShapeInfo& info, double n, double
   to.quality = opt.quality;
   to.max_volume = c * info.volume / n;
   to.preserve_surface = info.curved;
+  to.max_tets = 0;  // the count is steered toward --tets, itself bounded
   return tetrahedralize(make_shape(info.name, edge_for(info.volume, n), opt.seed), to);
 }
 
