@@ -17,21 +17,32 @@ def shape(name, tets=10000, quality=1.414, field="radial", seed=1):
     return _zsweep.generate_shape(name, int(tets), float(quality), field, int(seed))
 
 
-def surface(path, quality=1.414, max_volume=0.0, preserve_surface=False, field="distance", seed=1):
-    """TetGen mesh of the volume inside a closed surface file (.off, .stl, .ply, .obj)."""
+def surface(path, quality=1.414, max_volume=0.0, preserve_surface=False, field="distance", seed=1,
+            max_tets=5000000):
+    """TetGen mesh of the volume inside a closed surface file (.off, .stl, .ply, .obj).
+
+    A max_volume that needs more than max_tets tets is refused, and TetGen
+    stops with an error after adding max_tets / 4 points."""
     return _zsweep.generate_surface(os.fspath(path), float(quality), float(max_volume), bool(preserve_surface), field,
-                                    int(seed))
+                                    int(seed), int(max_tets))
 
 
-def implicit(name, size=None, field="distance", seed=1):
-    """CGAL Mesh_3 mesh of an implicit solid (zsweep.generate.implicit_solids())."""
-    return _zsweep.generate_implicit(name, None if size is None else float(size), field, int(seed))
+def implicit(name, size=None, field="distance", seed=1, max_points=250000):
+    """CGAL Mesh_3 mesh of an implicit solid (zsweep.generate.implicit_solids()).
+
+    The same arguments give the same mesh, here and from `zsweep mesh
+    generate implicit`. A size that needs more than max_points points is
+    refused; refinement stops with an error there."""
+    return _zsweep.generate_implicit(name, None if size is None else float(size), field, int(seed), int(max_points))
 
 
-def image(path, iso, below=False, size=None, field="image", seed=1):
-    """CGAL Mesh_3 mesh of a grey-level 3D image's iso-region (.inr, .inr.gz)."""
+def image(path, iso, below=False, size=None, field="image", seed=1, max_points=250000):
+    """CGAL Mesh_3 mesh of a grey-level 3D image's iso-region (.inr, .inr.gz).
+
+    An iso value that selects no voxel or every voxel is an error naming the
+    image's value range. Deterministic and bounded as implicit()."""
     return _zsweep.generate_image(os.fspath(path), float(iso), bool(below), None if size is None else float(size), field,
-                                  int(seed))
+                                  int(seed), int(max_points))
 
 
 def spheres(set, count=0, seed=1):

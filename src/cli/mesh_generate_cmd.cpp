@@ -3,7 +3,10 @@
 // with a scalar field attached, written through zs::write_mesh.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -28,6 +31,23 @@ namespace zs {
 
 namespace {
 
+// A number check with a readable message (CLI11's PositiveNumber and Range
+// write DBL_MAX out in 300 digits): v in [lo, hi], or (lo, hi] when lo_open;
+// NaN and infinities never pass. `also_zero` admits 0 as an "off" value.
+CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& what, bool also_zero = false) {
+  return CLI::Validator(
+      [=](std::string& v) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        if (v.empty() || *end != '\0') return "'" + v + "' is not a number";
+        if (also_zero && x == 0) return {};
+        if (!std::isfinite(x) || (lo_open ? !(x > lo) : !(x >= lo)) || !(x <= hi))
+          return v + " is out of range: must be " + what;
+        return {};
+      },
+      what);
+}
+
 // Options every generator shares.
 struct Common {
   std::string out;
@@ -43,7 +63,8 @@ void add_common(CLI::App* cmd, Common& c, const std::string& default_field) {
   cmd->add_option("--field", c.field, "Scalar field to attach")
       ->check(CLI::IsMember(fields))
       ->capture_default_str();
-  cmd->add_option("--seed", c.seed, "Seed for randomised shapes/fields")->capture_default_str();
+  cmd->add_option("--seed", c.seed, "Seed for random choices (blob shape, fields, Mesh_3): same seed, same mesh")
+      ->capture_default_str();
 }
 
 // Fail on a bad output name before spending minutes meshing.
@@ -65,17 +86,47 @@ void finish(TetMesh& m, const Common& c, const std::string& what, Clock::time_po
             << std::fixed << std::setprecision(1) << secs << " s)\n";
 }
 
+// "target 1000, +1.2 %": the count against the --tets asked for.
+std::string target_summary(const ShapeMeshReport& r) {
+  char b[64];
+  std::snprintf(b, sizeof b, "target %zu, %+.1f %%", r.target, 100 * r.error());
+  return b;
+}
+
+std::string target_miss(const ShapeMeshOptions& o, const ShapeMeshReport& r) {
+  char b[256];
+  if (r.at_floor)
+    std::snprintf(b, sizeof b, "%s: %zu tets, %+.0f %% over --tets %zu: the shape needs about that many at --quality %g",
+                  o.shape.c_str(), r.tets, 100 * r.error(), r.target, o.quality);
+  else
+    std::snprintf(b, sizeof b,
+                  "%s: %zu tets, %+.0f %% off --tets %zu (the closest of %d TetGen runs; small targets come in steps)",
+                  o.shape.c_str(), r.tets, 100 * r.error(), r.target, r.runs);
+  return b;
+}
+
 struct SizeOpts {
   std::optional<double> size, facet_angle, facet_size, facet_distance, cell_radius_edge, cell_size;
+  size_t max_points = Mesh3Criteria().max_points;
 };
 
 void add_size_opts(CLI::App* cmd, SizeOpts& s, const std::string& size_help) {
-  cmd->add_option("--size", s.size, size_help)->check(CLI::PositiveNumber);
-  cmd->add_option("--facet-angle", s.facet_angle, "Min surface facet angle, degrees (default 30)");
-  cmd->add_option("--facet-size", s.facet_size, "Surface Delaunay ball radius bound (default --size)");
-  cmd->add_option("--facet-distance", s.facet_distance, "Surface approximation error (default --size/4)");
-  cmd->add_option("--cell-radius-edge", s.cell_radius_edge, "Tet radius-edge ratio bound (default 2)");
-  cmd->add_option("--cell-size", s.cell_size, "Tet circumradius bound (default --size)");
+  // Mesh_3 does not terminate for angles above 30 degrees or radius-edge
+  // ratios below 2.
+  const CLI::Validator positive = number_in(0, INFINITY, true, "a positive number");
+  cmd->add_option("--size", s.size, size_help)->check(positive);
+  cmd->add_option("--facet-angle", s.facet_angle, "Min surface facet angle, degrees (default 30)")
+      ->check(number_in(0, 30, true, "in (0, 30]"));
+  cmd->add_option("--facet-size", s.facet_size, "Surface Delaunay ball radius bound (default --size)")->check(positive);
+  cmd->add_option("--facet-distance", s.facet_distance, "Surface approximation error (default --size/4)")
+      ->check(positive);
+  cmd->add_option("--cell-radius-edge", s.cell_radius_edge, "Tet radius-edge ratio bound (default 2)")
+      ->check(number_in(2, INFINITY, false, "at least 2"));
+  cmd->add_option("--cell-size", s.cell_size, "Tet circumradius bound (default --size)")->check(positive);
+  cmd->add_option("--max-points", s.max_points,
+                  "Refuse sizes that need more points, stop refining there (bounds time and memory)")
+      ->check(number_in(4, 1e8, false, "in [4, 100000000]"))
+      ->capture_default_str();
 }
 
 Mesh3Criteria criteria(const SizeOpts& s, double default_size, uint64_t seed) {
@@ -85,6 +136,7 @@ Mesh3Criteria criteria(const SizeOpts& s, double default_size, uint64_t seed) {
   if (s.facet_distance) c.facet_distance = *s.facet_distance;
   if (s.cell_radius_edge) c.cell_radius_edge = *s.cell_radius_edge;
   if (s.cell_size) c.cell_size = *s.cell_size;
+  c.max_points = s.max_points;
   c.seed = seed;
   return c;
 }
@@ -96,18 +148,21 @@ void add_shape_commands(CLI::App* gen) {
     auto opt = std::make_shared<ShapeMeshOptions>();
     opt->shape = info.name;
     add_common(cmd, *common, "radial");
-    cmd->add_option("--tets", opt->target_tets, "Target tet count (lands within ~10%, at most a few reruns)")
-        ->check(CLI::Range(size_t{1}, size_t{100000000}))
+    cmd->add_option("--tets", opt->target_tets,
+                    "Target tet count: within 10% from 1500 up (reruns TetGen, at most 16 times); the summary says by how much")
+        ->check(number_in(1, 1e8, false, "in [1, 100000000]"))
         ->capture_default_str();
     cmd->add_option("--quality", opt->quality, "Radius-edge ratio bound (TetGen -q)")
-        ->check(CLI::Range(1.1, 100.0))
+        ->check(number_in(1.1, 100, false, "in [1.1, 100]"))
         ->capture_default_str();
     cmd->callback([common, opt] {
       check_output(common->out);
       opt->seed = common->seed;
       auto t0 = Clock::now();
-      TetMesh m = mesh_shape(*opt);
-      finish(m, *common, opt->shape + ", target " + std::to_string(opt->target_tets), t0);
+      ShapeMeshReport rep;
+      TetMesh m = mesh_shape(*opt, &rep);
+      finish(m, *common, opt->shape + ", " + target_summary(rep), t0);
+      if (std::abs(rep.error()) > opt->tolerance) std::cerr << "zsweep: warning: " << target_miss(*opt, rep) << "\n";
     });
   }
 }
@@ -119,10 +174,16 @@ void add_surface_command(CLI::App* gen) {
   auto opt = std::make_shared<TetgenOptions>();
   cmd->add_option("input", *in, "Closed surface (.off, .stl, .ply, .obj)")->required();
   add_common(cmd, *common, "distance");
+  // TetGen's refinement is only guaranteed to stop for ratios from ~1.1.
   cmd->add_option("--quality", opt->quality, "Radius-edge ratio bound (TetGen -q; 0 = off)")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(number_in(1.1, 100, false, "0 (off) or in [1.1, 100]", true))
       ->capture_default_str();
-  cmd->add_option("--max-volume", opt->max_volume, "Max tet volume (TetGen -a)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-volume", opt->max_volume, "Max tet volume (TetGen -a; 0 = none)")
+      ->check(number_in(0, INFINITY, false, "0 (none) or a positive number"));
+  cmd->add_option("--max-tets", opt->max_tets,
+                  "Refuse a --max-volume that needs more tets, stop TetGen near there (bounds time and memory)")
+      ->check(number_in(4, 1e9, false, "in [4, 1000000000]"))
+      ->capture_default_str();
   cmd->add_flag("--preserve-surface", opt->preserve_surface,
                 "Keep the input triangles as the boundary, no Steiner points on it (TetGen -Y)");
   cmd->callback([common, in, opt] {
@@ -132,7 +193,7 @@ void add_surface_command(CLI::App* gen) {
     TetMesh m;
     try {
       m = tetrahedralize(plc, *opt);
-    } catch (const std::runtime_error& e) {
+    } catch (const std::exception& e) {  // TetGen's failures and the work bound alike
       throw std::runtime_error(*in + ": " + e.what());
     }
     finish(m, *common, "surface " + *in, t0);

@@ -3,6 +3,7 @@
 #include "python/py_generate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
@@ -59,10 +60,14 @@ py::dict mesh_dict(const TetMesh& m) {
   return d;
 }
 
-Mesh3Criteria criteria(std::optional<double> size, double default_size, uint64_t seed) {
-  if (size && !(*size > 0)) throw py::value_error("size must be positive");
+// The same criteria as the CLI's for the same arguments, so both give the
+// same mesh (Mesh_3 is deterministic for given criteria and seed).
+Mesh3Criteria criteria(std::optional<double> size, double default_size, uint64_t seed, size_t max_points) {
+  if (size && !(*size > 0 && std::isfinite(*size))) throw py::value_error("size must be a positive number");
+  if (max_points < 4) throw py::value_error("max_points must be at least 4");
   Mesh3Criteria c = Mesh3Criteria::from_size(size.value_or(default_size));
   c.seed = seed;
+  c.max_points = max_points;
   return c;
 }
 
@@ -88,19 +93,23 @@ py::dict shape(const std::string& name, size_t tets, double quality, const std::
 }
 
 py::dict surface(const std::string& path, double quality, double max_volume, bool preserve_surface,
-                 const std::string& field, uint64_t seed) {
+                 const std::string& field, uint64_t seed, size_t max_tets) {
   if (!(quality == 0 || (quality >= 1.1 && quality <= 100))) throw py::value_error("quality must be 0 or in [1.1, 100]");
+  if (!(max_volume >= 0) || !std::isfinite(max_volume))
+    throw py::value_error("max_volume must be 0 (none) or a positive number");
+  if (max_tets < 4) throw py::value_error("max_tets must be at least 4");
   check_field(field);
   return mesh_dict(without_gil([&] {
     TetgenOptions o;
     o.quality = quality;
     o.max_volume = max_volume;
     o.preserve_surface = preserve_surface;
+    o.max_tets = max_tets;
     const Plc plc = read_surface(path);
     TetMesh m;
     try {
       m = tetrahedralize(plc, o);
-    } catch (const std::runtime_error& e) {
+    } catch (const std::exception& e) {  // TetGen's failures and the work bound alike
       throw std::runtime_error(path + ": " + e.what());
     }
     if (field != "none") apply_field(m, field, seed);
@@ -108,7 +117,8 @@ py::dict surface(const std::string& path, double quality, double max_volume, boo
   }));
 }
 
-py::dict implicit(const std::string& name, std::optional<double> size, const std::string& field, uint64_t seed) {
+py::dict implicit(const std::string& name, std::optional<double> size, const std::string& field, uint64_t seed,
+                  size_t max_points) {
   const ImplicitShape* s = find_implicit(name);
   if (!s) {
     std::string all;
@@ -117,19 +127,20 @@ py::dict implicit(const std::string& name, std::optional<double> size, const std
   }
   check_field(field);
   return mesh_dict(without_gil([&] {
-    TetMesh m = mesh_implicit(*s, criteria(size, 0.1, seed));
+    TetMesh m = mesh_implicit(*s, criteria(size, 0.1, seed, max_points));
     if (field != "none") apply_field(m, field, seed);
     return m;
   }));
 }
 
 py::dict image(const std::string& path, double iso, bool below, std::optional<double> size, const std::string& field,
-               uint64_t seed) {
+               uint64_t seed, size_t max_points) {
   check_field(field);
+  criteria(size, 1, seed, max_points);  // checks the arguments before reading the image
   return mesh_dict(without_gil([&] {
     const VoxelImage img = read_voxel_image(path);
     const double voxel = std::max({img.spacing.x, img.spacing.y, img.spacing.z});
-    TetMesh m = mesh_gray_image(path, iso, !below, criteria(size, 2 * voxel, seed));
+    TetMesh m = mesh_gray_image(path, iso, !below, criteria(size, 2 * voxel, seed, max_points));
     if (field != "none") apply_field(m, field, seed, &img);
     return m;
   }));
@@ -174,11 +185,13 @@ void add_generate(py::module_& m) {
   m.def("generate_shape", &shape, py::arg("name"), py::arg("tets") = 10000, py::arg("quality") = 1.414,
         py::arg("field") = "radial", py::arg("seed") = 1);
   m.def("generate_surface", &surface, py::arg("path"), py::arg("quality") = 1.414, py::arg("max_volume") = 0.0,
-        py::arg("preserve_surface") = false, py::arg("field") = "distance", py::arg("seed") = 1);
+        py::arg("preserve_surface") = false, py::arg("field") = "distance", py::arg("seed") = 1,
+        py::arg("max_tets") = TetgenOptions().max_tets);
   m.def("generate_implicit", &implicit, py::arg("name"), py::arg("size") = py::none(), py::arg("field") = "distance",
-        py::arg("seed") = 1);
+        py::arg("seed") = 1, py::arg("max_points") = Mesh3Criteria().max_points);
   m.def("generate_image", &image, py::arg("path"), py::arg("iso"), py::arg("below") = false,
-        py::arg("size") = py::none(), py::arg("field") = "image", py::arg("seed") = 1);
+        py::arg("size") = py::none(), py::arg("field") = "image", py::arg("seed") = 1,
+        py::arg("max_points") = Mesh3Criteria().max_points);
   m.def("generate_spheres", &spheres, py::arg("set"), py::arg("count") = 0, py::arg("seed") = 1);
   m.def("shapes", [] {
     std::vector<std::string> v;

@@ -72,3 +72,29 @@ def test_generator_errors():
         zsweep.generate.spheres("c9")
     with pytest.raises(RuntimeError, match="missing.off"):
         zsweep.generate.surface("missing.off")
+
+
+def test_generate_image_is_deterministic_and_matches_the_cli(tmp_path):
+    import os
+    src = os.path.join(os.path.dirname(__file__), "..", "data", "images", "ball12.inr")
+    a = zsweep.generate.image(src, 2.0, below=True, size=0.2)
+    b = zsweep.generate.image(src, 2.0, below=True, size=0.2)
+    assert len(a["tets"]) > 100
+    for k in ("points", "tets", "scalar"):
+        assert np.array_equal(a[k], b[k])
+    # The CLI writes the same mesh (.off keeps every double: shortest round-trip text).
+    out = tmp_path / "img.off"
+    subprocess.run([ZSWEEP, "mesh", "generate", "image", src, "--iso", "2", "--below", "--size", "0.2", "-o", out],
+                   check=True, stdout=subprocess.DEVNULL)
+    lines = [l for l in out.read_text().split("\n") if l.strip() and not l.startswith("#")]
+    n, m = int(lines[0]), int(lines[1])
+    pts = np.array([[float(x) for x in l.split()] for l in lines[2:2 + n]])
+    tets = np.array([[int(x) for x in l.split()] for l in lines[2 + n:2 + n + m]])
+    assert np.array_equal(pts[:, :3], a["points"]) and np.array_equal(pts[:, 3], a["scalar"])
+    assert np.array_equal(tets, a["tets"])
+    with pytest.raises(RuntimeError, match=r"no voxel is above iso 1000 \(the image's values are 0.433013 to 4.76314\)"):
+        zsweep.generate.image(src, 1000)
+    with pytest.raises(RuntimeError, match="over the limit of 100 "):
+        zsweep.generate.image(src, 2.0, below=True, size=0.05, max_points=100)
+    with pytest.raises(ValueError, match="max_volume must be 0"):
+        zsweep.generate.surface(src, max_volume=-1)

@@ -23,6 +23,7 @@
 #include "mesh/generate/tetgen_mesher.h"
 #include "mesh/generate/voxel_image.h"
 #include "util/file_error.h"
+#include "test_inr.h"
 #include "test_paths.h"
 
 namespace fs = std::filesystem;
@@ -84,18 +85,6 @@ zs::TetMesh cube_with_centre() {
   }
   zs::orient_positive(m);
   return m;
-}
-
-// A float .inr image: INR header padded to 256 bytes, little-endian data.
-void write_inr(const fs::path& p, int n, double vx, const std::vector<float>& data) {
-  std::string h = "#INRIMAGE-4#{\nXDIM=" + std::to_string(n) + "\nYDIM=" + std::to_string(n) +
-                  "\nZDIM=" + std::to_string(n) + "\nVDIM=1\nTYPE=float\nPIXSIZE=32 bits\nCPU=decm\nVX=" +
-                  std::to_string(vx) + "\nVY=" + std::to_string(vx) + "\nVZ=" + std::to_string(vx) + "\n";
-  h.resize(252, '\n');
-  h += "##}\n";
-  std::ofstream f(p, std::ios::binary);
-  f.write(h.data(), static_cast<std::streamsize>(h.size()));
-  f.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size() * sizeof(float)));
 }
 
 }  // namespace
@@ -273,7 +262,7 @@ TEST(GenerateCgal, GrayImageBallAndImageField) {
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) data.push_back(float(glm::length(glm::dvec3(i, j, k) * vx - glm::dvec3(c))));
-  write_inr(dir / "ball.inr", n, vx, data);
+  zs::test::write_inr(dir / "ball.inr", n, vx, data);
 
   zs::VoxelImage img = zs::read_voxel_image((dir / "ball.inr").string());
   ASSERT_EQ(img.nx, 24u);
@@ -286,10 +275,11 @@ TEST(GenerateCgal, GrayImageBallAndImageField) {
   EXPECT_NEAR(zs::total_volume(m), exact, 0.06 * exact);
 
   zs::field_image(m, img);
-  // Trilinear interpolation of |x - c| is accurate away from the cone tip.
+  // Trilinear interpolation of |x - c| is accurate away from the cone tip
+  // (its error there is about h^2 / 4r: 0.05 at r = 1.25 for h = 0.5).
   for (size_t i = 0; i < m.num_points(); ++i) {
     double r = glm::length(m.points[i] - glm::dvec3(c));
-    if (r > 1.0) ASSERT_NEAR(m.scalars[i], r, 0.05);
+    if (r > 1.5) ASSERT_NEAR(m.scalars[i], r, 0.05);
   }
 
   EXPECT_THROW(zs::mesh_gray_image((dir / "none.inr").string(), 1.0, true, crit), zs::FileError);

@@ -12,6 +12,7 @@ add_library(zsweep_generate STATIC
   ${ZS_GEN_DIR}/implicit_shapes.cpp
   ${ZS_GEN_DIR}/cgal_mesher.cpp
   ${ZS_GEN_DIR}/voxel_image.cpp
+  ${ZS_GEN_DIR}/iso_region.cpp
   ${ZS_GEN_DIR}/scalar_fields.cpp
   ${ZS_GEN_DIR}/distance_field.cpp
 )

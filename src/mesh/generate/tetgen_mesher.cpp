@@ -2,12 +2,16 @@
 
 #include <tetgen.h>
 
+#include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdio>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "mesh/generate/tet_ops.h"
 #include "mesh/io/stdio_capture.h"
@@ -58,6 +62,22 @@ void fill_input(const Plc& plc, tetgenio& in) {
   }
 }
 
+// Volume enclosed by a closed triangle surface (cavities wound inward count
+// negative); 0 for other PLCs, which only the built-in shapes make.
+double enclosed_volume(const Plc& plc) {
+  if (!plc.is_triangle_surface()) return 0;
+  double v6 = 0;
+  for (const auto& t : plc.triangles())
+    v6 += glm::dot(plc.points[t[0]], glm::cross(plc.points[t[1]], plc.points[t[2]]));
+  return std::abs(v6) / 6;
+}
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
 }  // namespace
 
 TetMesh tetrahedralize(const Plc& plc, const TetgenOptions& opt) {
@@ -67,6 +87,16 @@ TetMesh tetrahedralize(const Plc& plc, const TetgenOptions& opt) {
   // TetGen's refinement is only guaranteed to terminate for ratios above ~1.1.
   if (opt.quality > 0 && opt.quality < 1.1)
     throw std::invalid_argument("quality (radius-edge ratio) must be 0 (off) or >= 1.1");
+  if (!(opt.max_volume >= 0) || !std::isfinite(opt.max_volume))
+    throw std::invalid_argument("max volume must be 0 (none) or a positive number");
+  if (opt.max_tets > 0 && opt.max_volume > 0) {
+    const double need = enclosed_volume(plc) / opt.max_volume;  // each tet holds at most max_volume
+    if (need > static_cast<double>(opt.max_tets))
+      throw std::invalid_argument("max volume " + num(opt.max_volume) + " needs at least " + num(need) +
+                                  " tets inside this surface (volume " + num(enclosed_volume(plc)) +
+                                  "), over the limit of " + std::to_string(opt.max_tets) +
+                                  " (--max-tets); use a larger max volume");
+  }
 
   tetgenio in, out;
   fill_input(plc, in);
@@ -83,6 +113,8 @@ TetMesh tetrahedralize(const Plc& plc, const TetgenOptions& opt) {
     sw += num;
   }
   if (opt.preserve_surface) sw += "Y";
+  const long max_added = opt.max_tets > 0 ? static_cast<long>(std::min<size_t>(opt.max_tets / 4 + 1, INT_MAX)) : -1;
+  if (max_added > 0) sw += "S" + std::to_string(max_added);
   std::vector<char> swbuf(sw.begin(), sw.end());
   swbuf.push_back('\0');
 
@@ -101,6 +133,9 @@ TetMesh tetrahedralize(const Plc& plc, const TetgenOptions& opt) {
   }
   std::string text = cap.finish();
   if (!ok) throw std::runtime_error(tetgen_error_line(text, fallback));
+  if (max_added > 0 && out.numberofpoints - in.numberofpoints >= max_added)
+    throw std::runtime_error("TetGen reached the limit of " + std::to_string(max_added) + " added points (--max-tets " +
+                             std::to_string(opt.max_tets) + ") before meeting the quality and volume bounds");
 
   TetMesh m;
   m.points.resize(static_cast<size_t>(out.numberofpoints));

@@ -40,6 +40,10 @@ VoxelImage read_voxel_image(const std::string& path) {
     ok = img.read(path);
   }
   if (!ok) throw FileError(path, "cannot read 3D image (expected .inr/.inr.gz, .hdr, ...)");
+  return voxel_image_from(img, path);
+}
+
+VoxelImage voxel_image_from(const CGAL::Image_3& img, const std::string& path) {
   if (img.image()->vdim != 1) throw FileError(path, "image has vector voxels; expected one value per voxel");
   VoxelImage v;
   v.nx = img.xdim();

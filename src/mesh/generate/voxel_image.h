@@ -8,6 +8,10 @@
 
 #include <glm/vec3.hpp>
 
+namespace CGAL {
+class Image_3;
+}
+
 namespace zs {
 
 struct VoxelImage {
@@ -23,5 +27,7 @@ struct VoxelImage {
 
 // Throws zs::FileError naming the file.
 VoxelImage read_voxel_image(const std::string& path);
+// The values of an image already read (`path` names it in errors).
+VoxelImage voxel_image_from(const CGAL::Image_3& img, const std::string& path);
 
 }  // namespace zs
