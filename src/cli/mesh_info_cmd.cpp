@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/option_checks.h"
 #include "cli/commands.h"
 #include "cli/mesh_source.h"
 #include "cli/sphere_info.h"
@@ -109,8 +110,10 @@ void add_mesh_info_command(CLI::App& mesh) {
   args->src.add_options(*cmd, false);
   cmd->add_flag("--json", args->json, "Print the report as JSON");
   cmd->add_option("--zero-volume-eps", args->eps, "Relative epsilon for zero-volume tets (|6V| <= eps*L^3)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(number_check(real_range(0, INFINITY)));
   cmd->callback([args] {
+    args->src.check_applies();
     if (is_sphere_file(args->src.path)) return print_sphere_info(args->src.path, args->json);
     const TetMesh m = args->src.load();
     const auto t0 = std::chrono::steady_clock::now();

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/option_checks.h"
 #include "app/scene_job.h"
 #include "cli/commands.h"
 #include "cli/json_out.h"
@@ -85,8 +86,9 @@ void render_to_file(SceneInput& in, const std::string& out_path, const std::stri
 
 namespace {
 
-void run(const SceneArgs& a, const std::string& out_path, const std::string& stats_path, int frames,
+void run(SceneArgs a, const std::string& out_path, const std::string& stats_path, int frames,
          const std::string& compression, bool no_culling) {
+  if (no_culling) a.also_given.push_back("--no-culling");
   SceneInput in = a.load();
   render_to_file(in, out_path, stats_path, frames, compression, no_culling);
 }
@@ -106,7 +108,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--frames", *frames,
                   "Render N whole frames (setup included) in one process and write the last; --stats reports "
                   "the best frame's time (steady-state benchmarks)")
-      ->check(CLI::Range(1, 100000));
+      ->check(number_check(whole_range(1, 100000)));
   cmd->add_option("--compression", *compression,
                   "EXR/TIFF compression. EXR lossless: rle (default: fast), zip (smaller files, ~4x slower to "
                   "write), zips, piz, none; EXR lossy: pxr24, b44, b44a, dwaa, dwab. TIFF (lossless): zip "
