@@ -36,7 +36,8 @@ class SurfaceJob : public SceneJob {
                                        st.project.degenerate),
                   (unsigned long long)st.project.triangles, (unsigned long long)st.tiles.rendered_pixels, lights,
                   lights == 1 ? "" : "s", total_ms);
-    return line;
+    return line + left_out_note({{in_.surface_elements_dropped, "element with fewer than three corners (a line or point)",
+                                  "elements with fewer than three corners (lines or points)"}});
   }
   std::string empty_reason(const TiledRenderer& r) const override {
     return of(r).stats().tiles.rendered_pixels ? "" : "no triangle is in front of the camera and in view";

@@ -2,6 +2,7 @@
 // camera and transfer function), or `zsweep render -o OUT` for the embedded
 // default scene.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -34,6 +35,23 @@ void warn_nonfinite(const SceneInput& in) {
                name.c_str(), n, in.mesh.num_tets());
 }
 
+// A scalar with one value everywhere maps every point to one colour and
+// opacity: the image is a flat silhouette (the oxygen post's density).
+void warn_constant_scalar(const SceneInput& in) {
+  const TetMesh& m = in.mesh;
+  if (!m.has_scalars()) return;
+  double lo = INFINITY, hi = -INFINITY;
+  for (double s : m.scalars)
+    if (std::isfinite(s)) lo = std::min(lo, s), hi = std::max(hi, s);
+  if (lo < hi || !(lo <= hi)) return;
+  const std::string name = in.scene.mesh_path.empty() ? "default mesh" : in.scene.mesh_path;
+  const std::string scalar = m.scalar_name.empty() ? "scalar" : m.scalar_name;
+  std::fprintf(stderr,
+               "zsweep: warning: %s: scalar '%s' is constant (%.9g)%s; every point gets the same colour and opacity\n",
+               name.c_str(), scalar.c_str(), lo,
+               in.scene.mesh_options.scalar.empty() ? ", as is every other array" : "");
+}
+
 }  // namespace
 
 void render_to_file(SceneInput& in, const std::string& out_path, const std::string& stats_path, int frames,
@@ -41,7 +59,10 @@ void render_to_file(SceneInput& in, const std::string& out_path, const std::stri
   if (!stats_path.empty()) AtomicFile(stats_path).check_writable();  // not after the render
   const bool volume = in.scene.kind == SceneKind::Volume;
   if (volume) {
-    if (!render_mpi_enabled() || render_mpi_rank() == 0) warn_nonfinite(in);
+    if (!render_mpi_enabled() || render_mpi_rank() == 0) {
+      warn_nonfinite(in);
+      warn_constant_scalar(in);
+    }
     in.scene.settings.face_area_stats = !stats_path.empty();
   }
   std::unique_ptr<SceneJob> job = make_scene_job(in, no_culling);

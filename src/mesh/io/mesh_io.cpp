@@ -8,6 +8,7 @@
 #include "mesh/io/tetgen_io.h"
 #include "mesh/io/vtk_io.h"
 #include "util/file_error.h"
+#include "util/input_file.h"
 #include "util/atomic_file.h"
 
 namespace zs {
@@ -31,9 +32,7 @@ MeshFormat format_of(const std::string& path, const ReadOptions& opt) {
 }
 
 TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw FileError(path, "no such file");
-  if (fs::is_directory(path, ec)) throw FileError(path, "is a directory, not a mesh file");
+  require_input_file(path, "a mesh file");
   const MeshFormat format = format_of(path, opt);
   if (!opt.q_path.empty() && format != MeshFormat::Plot3d)
     throw FileError(path, "a PLOT3D solution file (" + opt.q_path + ") applies to PLOT3D grids only, and this is a " +

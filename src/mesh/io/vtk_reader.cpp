@@ -35,6 +35,7 @@
 #include <stdexcept>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -142,6 +143,38 @@ std::string array_list(vtkDataSet* ds) {
   return s.empty() ? "none" : s;
 }
 
+// The finite range of an array's values (its magnitude, for vectors); lo > hi
+// when it has no finite value.
+void value_range(vtkDataArray* a, double* lo, double* hi) {
+  *lo = INFINITY, *hi = -INFINITY;
+  const int nc = a->GetNumberOfComponents();
+  std::vector<double> t(static_cast<size_t>(nc));
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) {
+    double v;
+    if (nc == 1) {
+      v = a->GetComponent(i, 0);
+    } else {
+      a->GetTuple(i, t.data());
+      double q = 0;
+      for (double x : t) q += x * x;
+      v = std::sqrt(q);
+    }
+    if (std::isfinite(v)) *lo = std::min(*lo, v), *hi = std::max(*hi, v);
+  }
+}
+
+bool varies(vtkDataArray* a) {
+  double lo, hi;
+  value_range(a, &lo, &hi);
+  return lo < hi;
+}
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
 vtkDataArray* first_usable(vtkDataSetAttributes* attrs) {
   if (usable(attrs->GetScalars())) return attrs->GetScalars();
   for (int i = 0; i < attrs->GetNumberOfArrays(); ++i)
@@ -186,6 +219,26 @@ std::vector<double> pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const st
   } else {
     pa = first_usable(ds->GetPointData());
     if (!pa) ca = first_usable(ds->GetCellData());
+    // A constant default (a uniform field): the first array that varies,
+    // point data before cell data, so the default render shows something.
+    vtkDataArray* def = pa ? pa : ca;
+    if (def && !varies(def)) {
+      bool found = false;
+      for (int cell = 0; cell < 2 && !found; ++cell) {
+        vtkDataSetAttributes* attrs = cell ? static_cast<vtkDataSetAttributes*>(ds->GetCellData())
+                                           : static_cast<vtkDataSetAttributes*>(ds->GetPointData());
+        for (int i = 0; i < attrs->GetNumberOfArrays() && !found; ++i) {
+          vtkDataArray* a = attrs->GetArray(i);
+          if (!usable(a) || !varies(a)) continue;
+          double lo, hi;
+          value_range(def, &lo, &hi);
+          m.scalar_choice = "'" + std::string(def->GetName()) + "' is constant (" + (lo <= hi ? num(lo) : "no finite value") + ")";
+          pa = cell ? nullptr : a;
+          ca = cell ? a : nullptr;
+          found = true;
+        }
+      }
+    }
   }
   if (!pa && !ca) {
     m.notes.push_back("no point or cell data arrays: mesh has no scalar");
@@ -198,6 +251,8 @@ std::vector<double> pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const st
                       "' is cell data: averaged onto points (vtkCellDataToPointData)");
   }
   m.scalar_name = arr->GetName();
+  if (!m.scalar_choice.empty())
+    m.notes.push_back("scalar '" + m.scalar_name + "', the first array that varies: " + m.scalar_choice);
   const int nc = arr->GetNumberOfComponents();
   if (nc > 1)
     m.notes.push_back("array '" + m.scalar_name + "' has " + std::to_string(nc) +
