@@ -81,9 +81,12 @@ void check_every_number(CLI::App& app) {
   for (CLI::Option* o : app.get_options()) {
     const std::string t = o->get_type_name();
     const std::string base = t.substr(0, t.find(':'));
+    // An option with checks of its own (described after ':') gets their
+    // bounds in the message; one without still refuses a negative unsigned.
+    const bool own_checks = t.find(':') != std::string::npos;
     NumberRange r;
     if (base == "INT") r = whole_range(-INFINITY, INFINITY);
-    else if (base == "UINT") r = whole_range(0, INFINITY);
+    else if (base == "UINT") r = whole_range(own_checks ? -INFINITY : 0, INFINITY);
     else if (base == "FLOAT") r = real_range(-INFINITY, INFINITY);
     else continue;
     // In front of the option's own checks, which would call a word "not in range".
