@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/option_checks.h"
 #include "cli/commands.h"
 #include "mesh/generate/cgal_mesher.h"
 #include "mesh/generate/scalar_fields.h"
@@ -70,7 +71,7 @@ struct SizeOpts {
 };
 
 void add_size_opts(CLI::App* cmd, SizeOpts& s, const std::string& size_help) {
-  cmd->add_option("--size", s.size, size_help)->check(CLI::PositiveNumber);
+  cmd->add_option("--size", s.size, size_help)->check(number_check(positive_range()));
   cmd->add_option("--facet-angle", s.facet_angle, "Min surface facet angle, degrees (default 30)");
   cmd->add_option("--facet-size", s.facet_size, "Surface Delaunay ball radius bound (default --size)");
   cmd->add_option("--facet-distance", s.facet_distance, "Surface approximation error (default --size/4)");
@@ -97,10 +98,10 @@ void add_shape_commands(CLI::App* gen) {
     opt->shape = info.name;
     add_common(cmd, *common, "radial");
     cmd->add_option("--tets", opt->target_tets, "Target tet count (lands within ~10%, at most a few reruns)")
-        ->check(CLI::Range(size_t{1}, size_t{100000000}))
+        ->check(number_check(whole_range(1, 100000000)))
         ->capture_default_str();
     cmd->add_option("--quality", opt->quality, "Radius-edge ratio bound (TetGen -q)")
-        ->check(CLI::Range(1.1, 100.0))
+        ->check(number_check(real_range(1.1, 100)))
         ->capture_default_str();
     cmd->callback([common, opt] {
       check_output(common->out);
@@ -120,9 +121,9 @@ void add_surface_command(CLI::App* gen) {
   cmd->add_option("input", *in, "Closed surface (.off, .stl, .ply, .obj)")->required();
   add_common(cmd, *common, "distance");
   cmd->add_option("--quality", opt->quality, "Radius-edge ratio bound (TetGen -q; 0 = off)")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(number_check(real_range(0, 100)))
       ->capture_default_str();
-  cmd->add_option("--max-volume", opt->max_volume, "Max tet volume (TetGen -a)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-volume", opt->max_volume, "Max tet volume (TetGen -a)")->check(number_check(real_range(0, INFINITY)));
   cmd->add_flag("--preserve-surface", opt->preserve_surface,
                 "Keep the input triangles as the boundary, no Steiner points on it (TetGen -Y)");
   cmd->callback([common, in, opt] {
