@@ -109,12 +109,16 @@ void add_mesh_info_command(CLI::App& mesh) {
   CLI::App* cmd = mesh.add_subcommand("info", "Print counts, face topology and a validation report");
   args->src.add_options(*cmd, false);
   cmd->add_flag("--json", args->json, "Print the report as JSON");
-  cmd->add_option("--zero-volume-eps", args->eps, "Relative epsilon for zero-volume tets (|6V| <= eps*L^3)")
+  CLI::Option* eps = cmd->add_option("--zero-volume-eps", args->eps, "Relative epsilon for zero-volume tets (|6V| <= eps*L^3)")
       ->capture_default_str()
       ->check(number_check(real_range(0, INFINITY)));
-  cmd->callback([args] {
+  cmd->callback([args, eps] {
     args->src.check_applies();
-    if (is_sphere_file(args->src.path)) return print_sphere_info(args->src.path, args->json);
+    if (is_sphere_file(args->src.path)) {
+      if (eps->count())
+        throw UsageError(args->src.path + ": --zero-volume-eps applies to tet meshes only, and this is a sphere set");
+      return print_sphere_info(args->src.path, args->json);
+    }
     const TetMesh m = args->src.load();
     const auto t0 = std::chrono::steady_clock::now();
     const Topology topo = build_topology(m);

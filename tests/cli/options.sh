@@ -54,7 +54,8 @@ case_ ao_samples_negative 2 "$E--ao-samples: -1 is out of range: must be in \[0,
 case_ count_zero 2 "$E--count: 0 is out of range: must be at least 1 \(see --help\)$" '' -- \
   spheres generate c1 --count 0 -o "$tmp/o.sph"
 case_ seed_negative 2 "$E--seed: -1 is out of range: must be at least 0" '' -- spheres generate c1 --seed -1 -o "$tmp/o.sph"
-case_ compare_scale_word 2 "$E--scale: 'abc' is not a number" '' -- compare "$cube" "$cube" --scale abc
+case_ compare_scale_word 2 "$E--scale: 'abc' is not a number" '' -- compare "$cube" "$cube" --scale abc --diff "$o"
+case_ compare_scale_without_diff 2 "$E--scale requires --diff" '' -- compare "$cube" "$cube" --scale 0.1
 case_ zero_volume_eps_word 2 "$E--zero-volume-eps: 'tiny' is not a number" '' -- mesh info "$cube" --zero-volume-eps tiny
 
 # Options that do not apply to the input: refused, not ignored.
@@ -85,6 +86,8 @@ printf '{"mesh": "%s"}' "$cube" > "$tmp/scene.json"
 case_ scalar_with_scene 2 "$E$tmp/scene.json: --scalar applies to a mesh file; a scene names it as mesh.scalar$" '' -- \
   render "$tmp/scene.json" --scalar density -o "$o"
 case_ mesh_info_scalar_default 2 "$E--scalar applies to a mesh file, not the embedded default mesh$" '' -- mesh info --scalar x
+case_ mesh_info_eps_spheres 2 "$E$sph: --zero-volume-eps applies to tet meshes only, and this is a sphere set$" '' -- \
+  mesh info "$sph" --zero-volume-eps 0.1
 case_ mesh_info_q_spheres 2 "$E$sph: --q applies to tet meshes only, and this is a sphere set$" '' -- mesh info "$sph" --q x
 # Mesh files: a name that is not there lists what is; --q on a non-PLOT3D file.
 case_ scalar_unknown_off 1 "$E$cube: no array named 'nosuch'; available: scalar \(point\)$" '' -- \
