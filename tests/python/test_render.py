@@ -255,6 +255,19 @@ def test_options_are_checked_as_on_the_command_line(tmp_path):
     assert zsweep.render(off, scalar="scalar", width=8, height=8).shape == (8, 8, 4)
 
 
+def test_constant_default_scalar_gives_way_as_in_the_file_reader(cli, tmp_path):
+    g = hex_grid()
+    flat = numpy_to_vtk(np.ones(g.GetNumberOfPoints()), deep=True)
+    flat.SetName("density")
+    g.GetPointData().SetScalars(flat)  # constant: 'height' is the first array that varies
+    write_vtu(g, tmp_path / "flat.vtu")
+    ref, _ = cli(tmp_path / "flat.vtu", "--width", 48, "--height", 40)
+    img = zsweep.render(dict(VOLUME, mesh=g))
+    same(img, ref[:, :, :4])
+    named = zsweep.render(dict(VOLUME, mesh={"data": g, "scalar": "height"}))
+    same(img, named)
+
+
 def test_render_releases_the_gil():
     c, r = sphere_arrays(3000, seed=5)
     scene = {"image": {"width": 256, "height": 256}, "spheres": {"centers": c, "radii": r * 0.3},
