@@ -1,10 +1,14 @@
 #include "app/scene_args.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <stdexcept>
 #include <thread>
 
 #include <CLI/CLI.hpp>
+
+#include "spheres/sphere_io.h"
+#include "surfaces/io/surface_reader.h"
 
 namespace zs {
 
@@ -53,8 +57,21 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
       ->check(range("--tile-size"));
 }
 
+void SceneArgs::check_before_load() const {
+  check();
+  if (input.empty() || input.ends_with(".json")) return;  // kinds known once loaded
+  const SceneKind kind = is_sphere_file(input)    ? SceneKind::Spheres
+                         : is_surface_file(input) ? SceneKind::Surfaces
+                                                  : SceneKind::Volume;
+  check_option_scope(given(), kind, input, python);
+  const MeshFormat f = format_of(input);
+  if (kind == SceneKind::Volume && !opt.q_path.empty() && f != MeshFormat::Plot3d && f != MeshFormat::Unknown)
+    throw UsageError(input + ": " + option_name("--q", python) + " applies to PLOT3D grids only, and this is a " +
+                     std::filesystem::path(input).extension().string() + " mesh");
+}
+
 SceneInput SceneArgs::load() const {
-  check();  // before any file is read
+  check_before_load();  // before any file is read
   SceneInput in = load_scene_input(input, opt);
   apply(in);
   return in;

@@ -46,6 +46,10 @@ struct SceneArgs {
   void add_options(CLI::App& cmd, bool engine_knobs);
   // Loads the input and applies every override; camera and TF are complete.
   SceneInput load() const;
+  // The checks that need no file read: the knobs' names, and for a bare
+  // file, the options that do not apply to its kind (by its name), so a
+  // large input is not read only to be refused. apply() checks again.
+  void check_before_load() const;
   // The same overrides on a scene loaded otherwise (the Python module's);
   // `name` names the input in messages (default: `input`).
   void apply(SceneInput& in, const std::string& name = "") const;

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <stdexcept>
 
 #include "app/option_checks.h"
@@ -31,6 +32,10 @@ void MeshSource::check_applies() const {
   const char* o = opt.scalar.empty() ? "--q" : "--scalar";
   if (path.empty()) throw UsageError(std::string(o) + " applies to a mesh file, not the embedded default mesh");
   if (is_sphere_file(path)) throw UsageError(path + ": " + o + " applies to tet meshes only, and this is a sphere set");
+  const MeshFormat f = format_of(path);
+  if (!opt.q_path.empty() && f != MeshFormat::Plot3d && f != MeshFormat::Unknown)
+    throw UsageError(path + ": --q applies to PLOT3D grids only, and this is a " +
+                     std::filesystem::path(path).extension().string() + " mesh");
 }
 
 }  // namespace zs

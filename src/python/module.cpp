@@ -153,6 +153,7 @@ std::unique_ptr<SceneInput> load(const std::string& text, const std::string& nam
     // No JSON text: `name` is a bare mesh, sphere or surface file, or empty
     // for the embedded default scene, as on the command line.
     if (text.empty()) o.args.input = name;  // a bare file, as `zsweep render FILE`
+    o.args.check_before_load();
     *in = text.empty() ? load_scene_input(name, o.args.opt) : load_scene_input_text(text, name, base_dir, sd);
     o.args.apply(*in, name.empty() ? "the default scene" : name);
   });

@@ -94,8 +94,13 @@ case_ scalar_unknown_off 1 "$E$cube: no array named 'nosuch'; available: scalar 
   render "$cube" --scalar nosuch -o "$o"
 case_ scalar_unknown_convert 1 "$E$cube: no array named 'nosuch'; available: scalar \(point\)$" '' -- \
   mesh convert "$cube" --scalar nosuch "$tmp/o.vtu"
-case_ q_on_off 1 "$E$cube: a PLOT3D solution file \($cube\) applies to PLOT3D grids only, and this is a .off mesh$" '' -- \
+case_ q_on_off 2 "$E$cube: --q applies to PLOT3D grids only, and this is a .off mesh$" '' -- \
   render "$cube" --q "$cube" -o "$o"
+case_ q_on_off_mesh_info 2 "$E$cube: --q applies to PLOT3D grids only, and this is a .off mesh$" '' -- \
+  mesh info "$cube" --q "$cube"
+printf '{"mesh": {"path": "%s", "q": "%s"}}' "$cube" "$cube" > "$tmp/q.json"
+case_ q_in_scene_on_off 1 "$E$cube: a PLOT3D solution file \($cube\) applies to PLOT3D grids only, and this is a .off mesh$" '' -- \
+  render "$tmp/q.json" -o "$o"
 case_ scalar_named_ok 0 '' "^wrote $o: 16x16, " -- render "$cube" --scalar scalar --width 16 --height 16 -o "$o"
 case_ variant_with_bconvert 0 '' "^wrote $o: " -- render "$cube" --scan bconvert --variant dilate --width 16 --height 16 -o "$o"
 
