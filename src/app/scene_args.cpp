@@ -59,7 +59,9 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
 
 void SceneArgs::check_before_load() const {
   check();
-  if (input.empty() || input.ends_with(".json")) return;  // kinds known once loaded
+  // A scene's kind is known once it is loaded; a missing file is the reader's to report.
+  std::error_code ec;
+  if (input.empty() || input.ends_with(".json") || !std::filesystem::is_regular_file(input, ec)) return;
   const SceneKind kind = is_sphere_file(input)    ? SceneKind::Spheres
                          : is_surface_file(input) ? SceneKind::Surfaces
                                                   : SceneKind::Volume;
