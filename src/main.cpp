@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/option_checks.h"
 #include "cli/commands.h"
 #include "mpi/mpi_env.h"
 #include "util/temp_registry.h"
@@ -39,6 +40,8 @@ int main(int argc, char** argv) {
   zs::add_compare_command(app);
   zs::add_reference_command(app);
   zs::add_spheres_command(app);
+  // Every numeric option, whoever registered it: a word is "not a number".
+  zs::check_every_number(app);
 
   try {
     app.parse(argc, argv);
@@ -46,6 +49,11 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     // A usage error: one line like every other error, exit code 2.
     std::cerr << "zsweep: error: " << e.what() << " (see --help)\n";
+    return 2;
+  } catch (const zs::UsageError& e) {
+    // Found after parsing (an option that does not apply to the input): still a usage error.
+    if (zs::mpi_active()) return zs::mpi_exit_on_error(e) ? 2 : 0;
+    std::cerr << "zsweep: error: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
     // Under `render --mpi` the ranks settle a failure together (src/mpi/mpi_env.h).

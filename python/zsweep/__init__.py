@@ -81,13 +81,11 @@ def _grid_arrays(grid, scalar=None):
     # The scalar as the .vtu reader picks it: the named array (point data
     # first, then cell data), else the active point scalar, else the first
     # one-component point array; cell data (averaged onto the points by the
-    # reader's own code) only when the grid has no usable point array.
+    # reader's own code) only when the grid has no usable point array; and
+    # when that default is constant, the first array that varies.
     key, a = _pick_scalar(grid.GetPointData(), grid.GetCellData(), scalar)
     if a is not None:
-        v = _vtk_numpy(a)
-        if v.ndim == 2:  # several components: their magnitude, as the reader takes
-            v = np.sqrt(np.square(v.astype(np.float64)).sum(axis=1))
-        out[key] = v
+        out[key] = _values(a)
     return out
 
 
@@ -101,14 +99,38 @@ def _pick_scalar(pd, cd, name):
                 return key, attrs.GetArray(name)
         raise ValueError("mesh: no point or cell array '%s' (point arrays: %s; cell arrays: %s)"
                          % (name, ", ".join(names(pd)) or "none", ", ".join(names(cd)) or "none"))
+    default = ("scalar", None)
     for key, attrs in (("scalar", pd), ("cell_scalar", cd)):
         if attrs.GetScalars() is not None:
-            return key, attrs.GetScalars()
-        for i in range(attrs.GetNumberOfArrays()):
-            c = attrs.GetArray(i)
-            if c is not None and c.GetNumberOfComponents() == 1:
-                return key, c
-    return "scalar", None
+            default = key, attrs.GetScalars()
+            break
+        ones = [attrs.GetArray(i) for i in range(attrs.GetNumberOfArrays())]
+        ones = [c for c in ones if c is not None and c.GetNumberOfComponents() == 1]
+        if ones:
+            default = key, ones[0]
+            break
+    # A constant default (a uniform field) gives way to the first array that
+    # varies, point data first, as the readers choose (docs/scene.md).
+    if default[1] is not None and not _varies(default[1]):
+        for key, attrs in (("scalar", pd), ("cell_scalar", cd)):
+            for i in range(attrs.GetNumberOfArrays()):
+                c = attrs.GetArray(i)
+                if c is not None and c.GetName() and c.GetNumberOfComponents() > 0 and _varies(c):
+                    return key, c
+    return default
+
+
+def _values(a):
+    v = _vtk_numpy(a)
+    if v.ndim == 2:  # several components: their magnitude, as the reader takes
+        v = np.sqrt(np.square(v.astype(np.float64)).sum(axis=1))
+    return v
+
+
+def _varies(a):
+    v = _values(a)
+    v = v[np.isfinite(v)]
+    return v.size > 0 and v.min() < v.max()
 
 
 def _polydata_arrays(poly):

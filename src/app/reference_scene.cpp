@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "app/scene_job.h"
 #include "mesh/topology.h"
+#include "mesh/validate.h"
 #include "reference/reference_renderer.h"
 #include "reference/sphere_reference.h"
 #include "shadows/ao_directions.h"
@@ -73,7 +75,7 @@ ReferenceImage reference_spheres(SceneInput& in, uint32_t ao_samples) {
                {"pixels_hit", img.hits},
                {"image", {{"width", rs.width}, {"height", rs.height}}}};
   out.summary = line("%ux%u, %zu spheres (%zu left out), %llu pixels hit, BVH %.1f ms, trace %.1f ms", rs.width,
-                     rs.height, in.spheres.size(), img.invalid, (unsigned long long)img.hits, img.ms_build,
+                     rs.height, in.spheres.size(), img.invalid + in.spheres.invalid, (unsigned long long)img.hits, img.ms_build,
                      img.ms_trace);
   return out;
 }
@@ -94,7 +96,9 @@ ReferenceImage reference_volume(SceneInput& in) {
                {"image", {{"width", out.width}, {"height", out.height}}}};
   out.summary = line("%ux%u, %llu rays hit, %llu segments, %llu lost walks, %.1f ms", out.width, out.height,
                      (unsigned long long)s.rays_hit, (unsigned long long)s.segments,
-                     (unsigned long long)s.lost_walks, s.ms_total);
+                     (unsigned long long)s.lost_walks, s.ms_total) +
+                left_out_note({{count_nonfinite_tets(in.mesh), "tet with a non-finite coordinate or scalar",
+                                "tets with a non-finite coordinate or scalar"}});
   return out;
 }
 

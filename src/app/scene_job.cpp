@@ -5,6 +5,13 @@
 
 namespace zs {
 
+std::string left_out_note(const std::vector<LeftOut>& parts) {
+  std::string s;
+  for (const LeftOut& p : parts)
+    if (p.count) s += (s.empty() ? "; left out: " : ", ") + std::to_string(p.count) + " " + (p.count == 1 ? p.one : p.many);
+  return s;
+}
+
 std::unique_ptr<SceneJob> make_scene_job(SceneInput& in, bool no_culling) {
   if (in.scene.kind == SceneKind::Spheres) return make_sphere_job(in, no_culling);
   if (in.scene.kind == SceneKind::Surfaces) {

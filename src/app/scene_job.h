@@ -63,6 +63,17 @@ class SceneJob {
   std::vector<std::string> names_;
 };
 
+// What a render left out of its input, for the summary line: each part a
+// count and its noun, singular and plural ("tet with a non-finite
+// coordinate or scalar"). Returns "; left out: 1 tet ..., 2 ..." or "" when
+// every count is 0, so every renderer's summary says what it skipped.
+struct LeftOut {
+  uint64_t count;
+  const char* one;
+  const char* many;
+};
+std::string left_out_note(const std::vector<LeftOut>& parts);
+
 // Throws std::runtime_error naming the file on bad input (sphere colours).
 // `in` must outlive the job. `no_culling`: as `render --no-culling`.
 std::unique_ptr<SceneJob> make_scene_job(SceneInput& in, bool no_culling);

@@ -55,7 +55,11 @@ class SphereJob : public SceneJob {
     std::snprintf(line, sizeof line, "%ux%u, %llu spheres drawn of %llu, %llu rendered pixels, %.1f ms",
                   in_.scene.settings.width, in_.scene.settings.height, (unsigned long long)st.vis.spheres_visible,
                   (unsigned long long)st.spheres, (unsigned long long)st.rendered_pixels, total_ms);
-    return line;
+    // Invalid records the reader dropped and invalid spheres of data given as arrays.
+    return line + left_out_note({{in_.spheres.invalid + st.invalid,
+                                  "sphere with a non-finite centre or a zero, negative or non-finite radius",
+                                  "spheres with a non-finite centre or a zero, negative or non-finite radius"},
+                                 {in_.spheres.skipped, "PDB alternate location", "PDB alternate locations"}});
   }
   std::string empty_reason(const TiledRenderer& r) const override {
     return of(r).stats().rendered_pixels ? "" : "no sphere is in front of the camera and in view";

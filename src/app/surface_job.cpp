@@ -51,7 +51,8 @@ class SurfaceJob : public SceneJob {
                     in_.ground_lowered_by);
       out += line;
     }
-    return out;
+    return out + left_out_note({{in_.surface_elements_dropped, "element with fewer than three corners (a line or point)",
+                                  "elements with fewer than three corners (lines or points)"}});
   }
   std::string empty_reason(const TiledRenderer& r) const override {
     return of(r).stats().tiles.rendered_pixels ? "" : "no triangle is in front of the camera and in view";

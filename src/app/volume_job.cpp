@@ -23,6 +23,7 @@ class VolumeJob : public SceneJob {
     topo_ = build_topology(in.mesh);
     ms_topology_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     grid_ = TileGrid{rs_.width, rs_.height, rs_.tile_size};
+    nonfinite_tets_ = count_nonfinite_tets(in.mesh);
   }
   void check_budget(uint64_t extra_bytes) const override { check_memory_budget(in_.mesh, topo_, rs_, extra_bytes); }
   std::unique_ptr<TiledRenderer> renderer(uint64_t extra_bytes, bool progress) override {
@@ -36,7 +37,12 @@ class VolumeJob : public SceneJob {
     char line[256];
     std::snprintf(line, sizeof line, "%ux%u, %llu fragments, %llu rendered pixels, %.1f ms", rs_.width, rs_.height,
                   (unsigned long long)S.fragments, (unsigned long long)S.rendered_pixels, total_ms);
-    return line;
+    std::string out = line;
+    // The scalar a reader chose itself because its default was constant.
+    if (!in_.mesh.scalar_choice.empty())
+      out += "; scalar '" + in_.mesh.scalar_name + "' (" + in_.mesh.scalar_choice + ")";
+    return out + left_out_note({{nonfinite_tets_, "tet with a non-finite coordinate or scalar",
+                                 "tets with a non-finite coordinate or scalar"}});
   }
   std::string empty_reason(const TiledRenderer& r) const override;
 
@@ -46,6 +52,7 @@ class VolumeJob : public SceneJob {
   RenderSettings rs_;  // outlives every renderer made from it
   Topology topo_;
   double ms_topology_ = 0;
+  uint64_t nonfinite_tets_ = 0;
 };
 
 nlohmann::json VolumeJob::stats(const TiledRenderer& r, const FrameReport& f) const {
@@ -88,7 +95,12 @@ nlohmann::json VolumeJob::stats(const TiledRenderer& r, const FrameReport& f) co
       {"peak_overflow_fragments", S.peak_overflow_fragments},
       {"peak_rss_bytes", S.peak_rss_bytes},
       {"memory_budget_bytes", S.memory_budget_bytes},
-      {"mesh", {{"points", m.num_points()}, {"tets", m.num_tets()}}},
+      {"mesh",
+       {{"points", m.num_points()},
+        {"tets", m.num_tets()},
+        {"tets_nonfinite", nonfinite_tets_},  // left out of the render
+        {"scalar", m.scalar_name},
+        {"scalar_choice", m.scalar_choice}}},  // why the reader chose it ("" when it was its default or named)
       {"image", {{"width", scene.settings.width}, {"height", scene.settings.height}}},
       {"scan", to_string(scene.settings.scan)},
       {"bconvert_variant", to_string(scene.settings.bconvert_variant)},
@@ -123,7 +135,7 @@ std::string VolumeJob::empty_reason(const TiledRenderer& r) const {
   const size_t tets = in_.mesh.num_tets();
   return !any_depth ? "the camera cannot resolve the mesh at this scale (depths are not finite)"
          : !in_front                                      ? "the whole mesh is behind the camera"
-         : count_nonfinite_tets(in_.mesh) == tets          ? "every tet has a non-finite coordinate or scalar"
+         : nonfinite_tets_ == tets                          ? "every tet has a non-finite coordinate or scalar"
          : st.tets_invisible + st.tets_degenerate >= tets ? "the transfer function's opacity is zero "
                                                              "wherever the mesh is (or its cells are flat)"
          : st.faces_projected == 0                        ? "the mesh is outside the view"

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/option_checks.h"
 #include "bench/accuracy_bench.h"
 #include "bench/bench_inputs.h"
 #include "bench/scan_bench.h"
@@ -64,12 +65,12 @@ void add_bench_command(CLI::App& app) {
       ->capture_default_str();
   scan->add_option("--csv", a->csv, "Output CSV")->required();
   scan->add_option("--plots", a->plots, "Directory for PNG plots and tables.md");
-  scan->add_option("--repeat", a->repeat, "Runs per case; the fastest counts")->check(CLI::Range(1, 100));
+  scan->add_option("--repeat", a->repeat, "Runs per case; the fastest counts")->check(number_check(whole_range(1, 100)));
   scan->add_option("--raster-only-above", a->raster_only_above,
                    "Sizes above this skip compositing (counts and scan times only)")
       ->capture_default_str();
   scan->add_option("--memory-budget", a->memory_budget_mb, "MiB (default: half of physical memory)")
-      ->check(CLI::Range(0.001, 1.7e13));
+      ->check(number_check(positive_range(1.7e13)));
   scan->callback([a] {
     ScanBenchOptions o;
     o.inputs = a->inputs;
@@ -117,8 +118,8 @@ void add_bench_accuracy_command(CLI::App& bench) {
   acc->add_option("--groups", a->groups, "Axes to measure")->capture_default_str();
   acc->add_option("--csv", a->csv, "Output CSV")->required();
   acc->add_option("--plots", a->plots, "Directory for the PNG figures");
-  acc->add_option("--repeat", a->repeat, "Runs per setting; the fastest counts")->check(CLI::Range(1, 100));
-  acc->add_option("--threads", a->threads, "Threads for every render (and the reference)")->check(CLI::Range(1, 1024));
+  acc->add_option("--repeat", a->repeat, "Runs per setting; the fastest counts")->check(number_check(whole_range(1, 100)));
+  acc->add_option("--threads", a->threads, "Threads for every render (and the reference)")->check(number_check(whole_range(1, 1024)));
   acc->callback([a] {
     AccuracyBenchOptions o;
     o.inputs = a->inputs;

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/option_checks.h"
 #include "cli/commands.h"
 #include "image/image.h"
 #include "image/image_compare.h"
@@ -24,8 +25,11 @@ void add_compare_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("compare", "Compare two images: max abs, RMSE, PSNR, pixels off by > 1/255");
   cmd->add_option("a", a->a, "First image (.exr, .tif, .png)")->required();
   cmd->add_option("b", a->b, "Second image")->required();
-  cmd->add_option("--diff", a->diff, "Write a false-colour difference image");
-  cmd->add_option("--scale", a->scale, "Difference shown as full red in --diff")->capture_default_str();
+  CLI::Option* diff = cmd->add_option("--diff", a->diff, "Write a false-colour difference image");
+  cmd->add_option("--scale", a->scale, "Difference shown as full red in --diff")
+      ->capture_default_str()
+      ->check(number_check(positive_range()))
+      ->needs(diff);  // it only scales that image
   cmd->add_flag("--rgb", a->rgb,
                 "Compare colour only, not alpha (for an image without alpha, such as VTK's screen grabs over "
                 "black, against a premultiplied render)");

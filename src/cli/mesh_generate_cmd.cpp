@@ -17,6 +17,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/option_checks.h"
 #include "cli/commands.h"
 #include "mesh/generate/cgal_mesher.h"
 #include "mesh/generate/scalar_fields.h"

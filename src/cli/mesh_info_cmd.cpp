@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/option_checks.h"
 #include "cli/commands.h"
 #include "cli/mesh_source.h"
 #include "cli/sphere_info.h"
@@ -111,11 +112,21 @@ void add_mesh_info_command(CLI::App& mesh) {
   CLI::App* cmd = mesh.add_subcommand("info", "Print counts, face topology and a validation report");
   args->src.add_options(*cmd, false);
   cmd->add_flag("--json", args->json, "Print the report as JSON");
-  cmd->add_option("--zero-volume-eps", args->eps, "Relative epsilon for zero-volume tets (|6V| <= eps*L^3)")
-      ->capture_default_str();
-  cmd->callback([args] {
-    if (is_sphere_file(args->src.path)) return print_sphere_info(args->src.path, args->json);
-    if (is_surface_file(args->src.path)) return print_surface_info(args->src.path, args->json);
+  CLI::Option* eps = cmd->add_option("--zero-volume-eps", args->eps, "Relative epsilon for zero-volume tets (|6V| <= eps*L^3)")
+      ->capture_default_str()
+      ->check(number_check(real_range(0, INFINITY)));
+  cmd->callback([args, eps] {
+    args->src.check_applies();
+    if (is_sphere_file(args->src.path)) {
+      if (eps->count())
+        throw UsageError(args->src.path + ": --zero-volume-eps applies to tet meshes only, and this is a sphere set");
+      return print_sphere_info(args->src.path, args->json);
+    }
+    if (is_surface_file(args->src.path)) {
+      if (eps->count())
+        throw UsageError(args->src.path + ": --zero-volume-eps applies to tet meshes only, and this is a triangle surface");
+      return print_surface_info(args->src.path, args->json);
+    }
     const TetMesh m = args->src.load();
     const auto t0 = std::chrono::steady_clock::now();
     const Topology topo = build_topology(m);

@@ -2,7 +2,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
+#include <stdexcept>
+
+#include "app/option_checks.h"
 #include "mesh/default_mesh.h"
+#include "spheres/sphere_io.h"
+#include "surfaces/io/surface_reader.h"
+#include "util/file_error.h"
 
 namespace zs {
 
@@ -16,6 +23,22 @@ void MeshSource::add_options(CLI::App& cmd, bool required) {
                  "Point array to use (VTK), or PLOT3D function: density, velocity-magnitude, pressure, ...");
 }
 
-TetMesh MeshSource::load() const { return path.empty() ? default_mesh() : read_mesh(path, opt); }
+TetMesh MeshSource::load() const {
+  check_applies();
+  return path.empty() ? default_mesh() : read_mesh(path, opt);
+}
+
+void MeshSource::check_applies() const {
+  if (opt.scalar.empty() && opt.q_path.empty()) return;
+  const char* o = opt.scalar.empty() ? "--q" : "--scalar";
+  if (path.empty()) throw UsageError(std::string(o) + " applies to a mesh file, not the embedded default mesh");
+  if (is_sphere_file(path)) throw UsageError(path + ": " + o + " applies to tet meshes only, and this is a sphere set");
+  if (is_surface_file(path))
+    throw UsageError(path + ": " + o + " applies to tet meshes only, and this is a triangle surface");
+  const MeshFormat f = format_of(path);
+  if (!opt.q_path.empty() && f != MeshFormat::Plot3d && f != MeshFormat::Unknown)
+    throw UsageError(path + ": --q applies to PLOT3D grids only, and this is a " +
+                     std::filesystem::path(path).extension().string() + " mesh");
+}
 
 }  // namespace zs

@@ -19,6 +19,8 @@ struct MeshSource {
   // Registers the positional MESH (required or optional) and --q/--scalar.
   void add_options(CLI::App& cmd, bool required);
   TetMesh load() const;
+  // Throws when --q or --scalar is given for an input they do not apply to.
+  void check_applies() const;
   std::string display_name() const { return path.empty() ? "<embedded default>" : path; }
 };
 

@@ -13,6 +13,7 @@
 #include "cli/json_out.h"
 #include "cli/render_file.h"
 #include "app/reference_scene.h"
+#include "app/option_checks.h"
 #include "app/scene_args.h"
 #include "image/image.h"
 #include "image/tile_writer.h"
@@ -55,11 +56,13 @@ void add_reference_command(CLI::App& app) {
   cmd->add_option("--ao-samples", *ao_samples,
                   "Sphere scenes with ao: 0 (default) traces the scene's directions exactly; N > 0 a cosine-weighted "
                   "Monte Carlo AO with N rays per pixel")
-      ->check(CLI::Range(0u, 1u << 20));
+      ->check(number_check(whole_range(0, 1 << 20)));
   cmd->callback([a, out, stats, ao_samples] {
-    SceneInput in = a->load();
-    if (*ao_samples && !(in.scene.kind == SceneKind::Spheres && in.scene.spheres.ao.directions))
-      throw std::runtime_error(a->input + ": --ao-samples needs a sphere scene with an 'ao' block");
+    SceneArgs args = *a;
+    if (*ao_samples) args.also_given.push_back("--ao-samples");
+    SceneInput in = args.load();
+    if (*ao_samples && !in.scene.spheres.ao.directions)
+      throw UsageError(args.input + ": --ao-samples needs a sphere scene with an 'ao' block");
     if (in.scene.kind == SceneKind::Surfaces) {
       // The surface renderer's ground truth is its exact mode: one Embree
       // shadow ray per visible pixel and light (docs/shadows.md).

@@ -2,6 +2,7 @@
 // camera and transfer function), or `zsweep render -o OUT` for the embedded
 // default scene.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -9,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/option_checks.h"
 #include "app/scene_job.h"
 #include "cli/commands.h"
 #include "cli/json_out.h"
@@ -33,6 +35,23 @@ void warn_nonfinite(const SceneInput& in) {
                name.c_str(), n, in.mesh.num_tets());
 }
 
+// A scalar with one value everywhere maps every point to one colour and
+// opacity: the image is a flat silhouette (the oxygen post's density).
+void warn_constant_scalar(const SceneInput& in) {
+  const TetMesh& m = in.mesh;
+  if (!m.has_scalars()) return;
+  double lo = INFINITY, hi = -INFINITY;
+  for (double s : m.scalars)
+    if (std::isfinite(s)) lo = std::min(lo, s), hi = std::max(hi, s);
+  if (lo < hi || !(lo <= hi)) return;
+  const std::string name = in.scene.mesh_path.empty() ? "default mesh" : in.scene.mesh_path;
+  const std::string scalar = m.scalar_name.empty() ? "scalar" : m.scalar_name;
+  std::fprintf(stderr,
+               "zsweep: warning: %s: scalar '%s' is constant (%.9g)%s; every point gets the same colour and opacity\n",
+               name.c_str(), scalar.c_str(), lo,
+               in.scene.mesh_options.scalar.empty() ? ", as is every other array" : "");
+}
+
 }  // namespace
 
 void render_to_file(SceneInput& in, const std::string& out_path, const std::string& stats_path, int frames,
@@ -40,7 +59,10 @@ void render_to_file(SceneInput& in, const std::string& out_path, const std::stri
   if (!stats_path.empty()) AtomicFile(stats_path).check_writable();  // not after the render
   const bool volume = in.scene.kind == SceneKind::Volume;
   if (volume) {
-    if (!render_mpi_enabled() || render_mpi_rank() == 0) warn_nonfinite(in);
+    if (!render_mpi_enabled() || render_mpi_rank() == 0) {
+      warn_nonfinite(in);
+      warn_constant_scalar(in);
+    }
     in.scene.settings.face_area_stats = !stats_path.empty();
   }
   std::unique_ptr<SceneJob> job = make_scene_job(in, no_culling);
@@ -85,8 +107,9 @@ void render_to_file(SceneInput& in, const std::string& out_path, const std::stri
 
 namespace {
 
-void run(const SceneArgs& a, const std::string& out_path, const std::string& stats_path, int frames,
+void run(SceneArgs a, const std::string& out_path, const std::string& stats_path, int frames,
          const std::string& compression, bool no_culling) {
+  if (no_culling) a.also_given.push_back("--no-culling");
   SceneInput in = a.load();
   render_to_file(in, out_path, stats_path, frames, compression, no_culling);
 }
@@ -106,7 +129,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--frames", *frames,
                   "Render N whole frames (setup included) in one process and write the last; --stats reports "
                   "the best frame's time (steady-state benchmarks)")
-      ->check(CLI::Range(1, 100000));
+      ->check(number_check(whole_range(1, 100000)));
   cmd->add_option("--compression", *compression,
                   "EXR/TIFF compression. EXR lossless: rle (default: fast), zip (smaller files, ~4x slower to "
                   "write), zips, piz, none; EXR lossy: pxr24, b44, b44a, dwaa, dwab. TIFF (lossless): zip "

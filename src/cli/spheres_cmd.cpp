@@ -1,12 +1,14 @@
 // `zsweep spheres convert IN OUT` and `zsweep spheres generate c1..c4`:
 // sphere sets between .pdb/.sph/.sphb, and the C1-C4 test sets.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include <CLI/CLI.hpp>
 
+#include "app/option_checks.h"
 #include "cli/commands.h"
 #include "spheres/generate/demo_image.h"
 #include "spheres/generate/pore_balls.h"
@@ -58,13 +60,13 @@ void add_generate(CLI::App& spheres) {
   cmd->add_option("set", args->set, "c1 (1 M, sparse + central cluster), c2 (2,463,048 maximal balls of a real image's "
                                     "pores), c3 (8 M in small clusters), c4 (27 M in one block)")
       ->required();
-  cmd->add_option("--count", args->count, "Number of spheres (default: the set's full size)")->check(CLI::PositiveNumber);
+  cmd->add_option("--count", args->count, "Number of spheres (default: the set's full size)")->check(number_check(whole_range(1, INFINITY)));
   cmd->add_option("--seed", args->seed, "Random seed (same seed, same set)");
   cmd->add_option("-o,--output", args->out, "Output: .sph or .sphb")->required();
   cmd->callback([args] {
     SphereTestSet t;
     if (!parse_sphere_test_set(args->set, &t))
-      throw std::runtime_error("unknown sphere test set '" + args->set + "' (expected c1, c2, c3 or c4)");
+      throw UsageError("unknown sphere test set '" + args->set + "' (expected c1, c2, c3 or c4)");
     check_output(args->out);
     const size_t n = args->count ? args->count : default_sphere_count(t);
     const auto t0 = std::chrono::steady_clock::now();

@@ -10,6 +10,7 @@
 #include "image/image.h"
 #include "image/pixel_quantize.h"
 #include "util/atomic_file.h"
+#include "util/input_file.h"
 
 namespace zs {
 
@@ -66,6 +67,7 @@ void write_image(const std::string& path, const Image& img, const std::string& c
 }
 
 Image read_image(const std::string& path) {
+  require_input_file(path, "an image");
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // the stored values, unconverted
   auto in = OIIO::ImageInput::open(path, &config);

@@ -20,6 +20,9 @@ struct TetMesh {
   std::vector<Tet> tets;
 
   std::string scalar_name;      // e.g. "density"; empty when unnamed
+  // Why a reader chose this scalar when none was named and its default was
+  // constant, e.g. "'Density' is constant (1)"; empty otherwise.
+  std::string scalar_choice;
   // Things a reader did to the data that a user should know (cell->point
   // averaging, hex splitting, merged points...). Printed by `mesh info`.
   std::vector<std::string> notes;

@@ -105,34 +105,41 @@ struct Options {
 Options options_from(const py::dict& o) {
   Options out;
   SceneArgs& a = out.args;
+  a.python = true;
   for (auto kv : o) {
     const std::string k = py::str(kv.first);
     const py::handle v = kv.second;
     if (v.is_none()) continue;
-    auto positive = [&](double x) {
-      if (!(x > 0)) throw py::value_error(k + " must be positive");
+    // A number checked against the command line's range for it (app/scene_args.h).
+    auto number = [&](const NumberRange& r) {
+      if (py::isinstance<py::bool_>(v) || !(py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v) ||
+                                            py::hasattr(v, "__float__")))
+        throw py::type_error(k + " must be a number, not " + std::string(py::str(v.get_type().attr("__name__"))));
+      const double x = v.cast<double>();
+      const std::string why = number_error(x, r);
+      if (!why.empty()) throw py::value_error(k + ": " + why);
       return x;
     };
-    if (k == "width") a.width = uint32_t(positive(v.cast<double>()));
-    else if (k == "height") a.height = uint32_t(positive(v.cast<double>()));
-    else if (k == "threads") a.threads = int(positive(v.cast<double>()));
+    auto scene_number = [&](const char* cli) { return number(scene_number_range(cli)); };
+    if (k == "width") a.width = uint32_t(scene_number("--width"));
+    else if (k == "height") a.height = uint32_t(scene_number("--height"));
+    else if (k == "threads") a.threads = int(scene_number("--threads"));
     else if (k == "projection") a.projection = v.cast<std::string>();
-    else if (k == "memory_budget") a.memory_budget_mb = positive(v.cast<double>());
+    else if (k == "memory_budget") a.memory_budget_mb = scene_number("--memory-budget");
     else if (k == "scan") a.scan = v.cast<std::string>();
     else if (k == "variant") a.variant = v.cast<std::string>();
     else if (k == "integrator") a.integrator = v.cast<std::string>();
     else if (k == "precision") a.precision = v.cast<std::string>();
-    else if (k == "early_termination") a.early_termination = v.cast<double>();
-    else if (k == "max_list_length") a.max_list_length = v.cast<int64_t>();
-    else if (k == "tile_size") a.tile_size = uint32_t(positive(v.cast<double>()));
+    else if (k == "early_termination") a.early_termination = scene_number("--early-termination");
+    else if (k == "max_list_length") a.max_list_length = int64_t(scene_number("--max-list-length"));
+    else if (k == "tile_size") a.tile_size = uint32_t(scene_number("--tile-size"));
     else if (k == "scalar") a.opt.scalar = v.cast<std::string>();
     else if (k == "q") a.opt.q_path = v.cast<std::string>();
     else if (k == "no_culling") out.no_culling = v.cast<bool>();
-    else if (k == "frames") out.frames = int(positive(v.cast<double>()));
+    else if (k == "frames") out.frames = int(number(whole_range(1, 100000)));
     else throw py::type_error("render() got an unexpected option '" + k + "'");
   }
-  if (a.width > (1u << 20) || a.height > (1u << 20)) throw py::value_error("width and height must be at most 1048576");
-  if (a.tile_size && (a.tile_size < 8 || a.tile_size > 4096)) throw py::value_error("tile_size must be in [8, 4096]");
+  if (out.no_culling) a.also_given.push_back("--no-culling");
   return out;
 }
 
@@ -145,8 +152,10 @@ std::unique_ptr<SceneInput> load(const std::string& text, const std::string& nam
   run_cancellable([&](const std::atomic<bool>&) {
     // No JSON text: `name` is a bare mesh, sphere or surface file, or empty
     // for the embedded default scene, as on the command line.
+    if (text.empty()) o.args.input = name;  // a bare file, as `zsweep render FILE`
+    o.args.check_before_load();
     *in = text.empty() ? load_scene_input(name, o.args.opt) : load_scene_input_text(text, name, base_dir, sd);
-    o.args.apply(*in);
+    o.args.apply(*in, name.empty() ? "the default scene" : name);
   });
   return in;
 }
@@ -200,9 +209,11 @@ py::tuple render(const std::string& text, const std::string& name, const std::st
 py::tuple reference(const std::string& text, const std::string& name, const std::string& base_dir,
                     const py::dict& data, const py::dict& options, uint32_t ao_samples) {
   Options o = options_from(options);
+  if (ao_samples) o.args.also_given.push_back("--ao-samples");
   std::unique_ptr<SceneInput> in = load(text, name, base_dir, data, o);
+  if (ao_samples && !in->scene.spheres.ao.directions)
+    throw py::value_error("ao_samples needs a sphere scene with an 'ao' block");
   if (in->scene.kind == SceneKind::Surfaces) {
-    if (ao_samples) throw py::value_error("ao_samples needs a sphere scene with an 'ao' block");
     in->scene.surfaces.shadows.mode = ShadowMode::Exact;
     return render_input(*in, o);
   }
@@ -259,4 +270,6 @@ PYBIND11_MODULE(_zsweep, m) {
   m.def("write_image", &zs::python::write, py::arg("path"), py::arg("image"));
   m.def("compare", &zs::python::compare, py::arg("a"), py::arg("b"), py::arg("rgb") = false);
   zs::python::add_generate(m);
+  // An option that does not apply to the input, or a bad option value.
+  py::register_exception<zs::UsageError>(m, "UsageError", PyExc_ValueError);
 }

@@ -30,6 +30,10 @@ struct TileGrid {
   }
   // The tile whose rect starts at (r.x0, r.y0).
   uint32_t tile_of(const TileRect& r) const { return (r.y0 / size) * cols() + r.x0 / size; }
+  // The most pixels one tile holds: the tile size clipped to the image (a
+  // 4096-pixel tile of a 512x512 image is 512x512). Per-tile buffers are
+  // sized by their tile's rect, so memory estimates count this, not size².
+  uint64_t max_tile_pixels() const { return uint64_t(std::min(size, width)) * std::min(size, height); }
   uint64_t tile_floats(uint32_t tile) const {
     const TileRect r = rect(tile);
     return uint64_t(r.width()) * r.height() * channels;

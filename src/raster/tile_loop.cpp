@@ -18,8 +18,10 @@ std::vector<uint32_t> all_tiles(const TileGrid& grid) {
 
 size_t relay_queue_tiles(const TileGrid& grid, int threads) {
   if (threads <= 1) return 0;
-  const uint64_t tile_bytes = uint64_t(grid.size) * grid.size * grid.channels * 4;
-  return size_t(std::max<uint64_t>(1, std::min<uint64_t>(16, (uint64_t(64) << 20) / tile_bytes)));
+  // Tiles as large as they are in this image (clipped), and never more than it has.
+  const uint64_t tile_bytes = grid.max_tile_pixels() * grid.channels * 4;
+  const uint64_t cap = std::min<uint64_t>(16, grid.count());
+  return size_t(std::max<uint64_t>(1, std::min<uint64_t>(cap, (uint64_t(64) << 20) / tile_bytes)));
 }
 
 void run_tiles(const TileGrid& grid, const std::vector<uint32_t>& tiles, int threads, TileSink& sink,

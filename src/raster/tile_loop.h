@@ -28,9 +28,9 @@ void run_tiles(const TileGrid& grid, const std::vector<uint32_t>& tiles, int thr
 // Every tile id of the grid, in order.
 std::vector<uint32_t> all_tiles(const TileGrid& grid);
 
-// How many finished tiles may wait for a busy sink: up to 16 and at most
-// 64 MiB of them, but at least one (even a tile larger than that), none with
-// one thread. Count it against the memory budget.
+// How many finished tiles may wait for a busy sink: up to 16 (no more than
+// the image has) and at most 64 MiB of them, but at least one (even a tile
+// larger than that), none with one thread. Count it against the memory budget.
 size_t relay_queue_tiles(const TileGrid& grid, int threads);
 
 }  // namespace zs

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene_json.h"
+#include "util/input_file.h"
 #include "shadows/ao_directions.h"
 
 namespace zs {
@@ -48,6 +49,8 @@ std::vector<ColorPoint> colors(const Ctx& c, const json& v) {
   if (v.is_string()) {
     // A ParaView colormap preset file (its first preset).
     const std::string path = c.resolve(v.get<std::string>());
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) c.fail(where + ": " + path + " is a directory, not a ParaView preset");
     std::ifstream in(path);
     if (!in) c.fail(where + ": cannot open ParaView preset '" + path + "'");
     json preset;
@@ -363,6 +366,7 @@ SphereRenderSettings sphere_render_settings(const RenderSettings& common, const 
 }
 
 Scene load_scene(const std::string& path) {
+  require_input_file(path, "a scene file");
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open scene file");
   std::stringstream ss;

@@ -14,6 +14,12 @@ Camera frame_bounds(const Bounds& b, Projection projection, uint32_t width, uint
   cam.projection = projection;
   const glm::dvec3 c = b.centre();
   const double r = b.empty ? 1.0 : std::max(b.half_diagonal(), 1e-300);
+  if (!b.empty && b.half_diagonal() == 0) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg, "all points coincide (at %.9g, %.9g, %.9g): nothing has an extent for the "
+                  "automatic camera to frame; give a camera", b.lo.x, b.lo.y, b.lo.z);
+    throw std::runtime_error(msg);
+  }
   // The view's basis and depths square lengths of this order: beyond these
   // they under- or overflow and every depth would be lost.
   if (!b.empty && (r < 1e-140 || r > 1e140 || glm::length(c) > 1e140)) {

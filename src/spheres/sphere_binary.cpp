@@ -15,6 +15,7 @@
 #include "spheres/sphere_validity.h"
 #include "util/atomic_file.h"
 #include "util/file_error.h"
+#include "util/input_file.h"
 
 namespace zs {
 
@@ -147,8 +148,8 @@ SphereSet parse_spheres_binary(std::string_view bytes, const std::string& name) 
 }
 
 SphereSet read_spheres_binary(const std::string& path) {
+  require_input_file(path, "a sphere file");
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw FileError(path, "cannot read: is a directory");
   File f(std::fopen(path.c_str(), "rb"));
   if (!f) throw FileError(path, std::string("cannot read: ") + std::strerror(errno));
   const auto total = std::filesystem::file_size(path, ec);

@@ -116,9 +116,10 @@ struct SphereRenderer::Impl {
     S.invalid = g.invalid;
     S.tiles = grid.count();
     S.tile_size = rs.tile_size;
-    const uint64_t tile_state = uint64_t(rs.tile_size) * rs.tile_size * (kTilePixelBytes + 4 * grid.channels);
+    const uint64_t tile_px = grid.max_tile_pixels();  // tiles clipped to the image
+    const uint64_t tile_state = tile_px * (kTilePixelBytes + 4 * grid.channels);
     uint64_t shared = extra_bytes + g.bytes() + uint64_t(threads) * tile_state +
-                      relay_queue_tiles(grid, threads) * uint64_t(rs.tile_size) * rs.tile_size * 4 * grid.channels;
+                      relay_queue_tiles(grid, threads) * tile_px * 4 * grid.channels;
     auto check = [&](uint64_t need) {
       if (need > budget)
         throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " +
@@ -153,7 +154,7 @@ struct SphereRenderer::Impl {
     if (rs.mode != SphereMode::Opaque) {
       occluder.resize(g.ids.size());
       for (size_t e = 0; e < g.ids.size(); ++e) occluder[e] = colors[g.ids[e]].a >= 1.f;
-      shared += occluder.size() + uint64_t(threads) * uint64_t(rs.tile_size) * rs.tile_size * TranslucentTile::kPixelBytes;
+      shared += occluder.size() + uint64_t(threads) * tile_px * TranslucentTile::kPixelBytes;
       check(shared);
     }
     const auto t_vis = Clock::now();
@@ -223,7 +224,7 @@ struct SphereRenderer::Impl {
     // What is left of the budget, per thread, for sorted's deeper k-buffer
     // passes (TranslucentTile::sorted), at most kMaxKbufBytes: enough for a
     // 64² tile 8192 fragments deep.
-    const uint64_t base_kbuf = uint64_t(rs.tile_size) * rs.tile_size * TranslucentTile::kSortedLayers * 16;
+    const uint64_t base_kbuf = tile_px * TranslucentTile::kSortedLayers * 16;
     kbuf_bytes = std::max(base_kbuf, std::min(kMaxKbufBytes, budget > shared ? (budget - shared) / threads : 0));
     bin_ids.resize(S.bin_entries);
     std::vector<uint64_t> next(bin_offset.begin(), bin_offset.end() - 1);

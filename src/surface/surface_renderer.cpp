@@ -88,7 +88,7 @@ struct SurfaceRenderer::Impl {
     S.tile_size = rs.tile_size;
     shadows = rs.shadows_enabled && L > 0;
     const bool exact = rs.shadows.mode == ShadowMode::Exact;
-    const uint64_t tile_px = uint64_t(rs.tile_size) * rs.tile_size;
+    const uint64_t tile_px = grid.max_tile_pixels();  // tiles clipped to the image
     uint64_t need = extra_bytes + uint64_t(threads) * tile_px * (kTilePixelBytes + 4 * grid.channels) +
                     relay_queue_tiles(grid, threads) * tile_px * 4 * grid.channels +
                     // projected vertices and corners, bins (estimate: each triangle in ~2 tiles)

@@ -14,7 +14,7 @@ namespace zs {
 
 std::string read_text_file(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw FileError(path, "is a directory, not a file");
+  if (std::filesystem::is_directory(path, ec)) throw FileError(path, "is a directory, not a file");  // as require_input_file
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FileError(path, std::string("cannot open: ") + std::strerror(errno));
   std::ostringstream ss;

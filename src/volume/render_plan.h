@@ -21,7 +21,8 @@ uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces);
 struct RenderPlan {
   uint64_t shared_bytes = 0, max_fragments = 0;  // max_fragments per thread's pool
 };
-RenderPlan plan_render(uint64_t budget, uint64_t shared_bytes, uint32_t tile_size, int threads);
+// `tile_pixels`: the largest tile's pixels (TileGrid::max_tile_pixels).
+RenderPlan plan_render(uint64_t budget, uint64_t shared_bytes, uint64_t tile_pixels, int threads);
 
 // Throws the error a render would throw at set-up when the memory budget
 // (settings.memory_budget_bytes, 0: default) cannot hold it, before anything

@@ -67,9 +67,9 @@ uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces) {
   return num_points * per_point + num_faces * (2 + 4 + 4 + 12 + 8 + sizeof(TileBox));
 }
 
-RenderPlan plan_render(uint64_t budget, uint64_t shared, uint32_t tile_size, int threads) {
+RenderPlan plan_render(uint64_t budget, uint64_t shared, uint64_t tile_pixels, int threads) {
   threads = std::max(1, threads);
-  const uint64_t tile_state = uint64_t(tile_size) * tile_size * kTilePixelBytes;
+  const uint64_t tile_state = tile_pixels * kTilePixelBytes;
   RenderPlan p;
   p.shared_bytes = shared;
   // Each thread's pool must hold at least a few fragments; the rest is
@@ -101,14 +101,12 @@ uint64_t check_memory_budget(const TetMesh& mesh, const Topology& topo, const Re
                              std::to_string(rs.tile_size) + "-pixel tiles is too many tiles; use a larger tile size");
   // Vertices and faces, the sink, the relay's queue and the bins' per-tile
   // offsets; the bins' entries are known only later (one per face here).
+  const uint64_t tile_px = grid.max_tile_pixels();
   const uint64_t shared = zsweep_shared_bytes(mesh.num_points(), topo.num_faces()) + sink_bytes +
-                          relay_queue_tiles(grid, threads) * uint64_t(rs.tile_size) * rs.tile_size * 16 +
-                          (tiles + 1) * 8;
+                          relay_queue_tiles(grid, threads) * tile_px * 16 + (tiles + 1) * 8;
   const uint64_t need = shared + topo.num_faces() * 4;
-  if (plan_render(budget, need, rs.tile_size, threads).max_fragments == 0)
-    throw budget_too_small(rs, budget,
-                           need + uint64_t(threads) * (uint64_t(rs.tile_size) * rs.tile_size * kTilePixelBytes +
-                                                       kMinPoolFragments * 16));
+  if (plan_render(budget, need, tile_px, threads).max_fragments == 0)
+    throw budget_too_small(rs, budget, need + uint64_t(threads) * (tile_px * kTilePixelBytes + kMinPoolFragments * 16));
   return shared - (tiles + 1) * 8;  // the bins' offsets are counted again with their real size
 }
 
@@ -139,7 +137,7 @@ struct ZSweepRenderer::Impl {
     S.memory_budget_bytes = budget;
     S.tile_size = rs.tile_size;
     S.tiles = grid.count();
-    const uint64_t tile_state = uint64_t(rs.tile_size) * rs.tile_size * kTilePixelBytes;
+    const uint64_t tile_state = grid.max_tile_pixels() * kTilePixelBytes;
 
     in.sv.resize(mesh.num_points());
     double zmin = INFINITY;
@@ -186,7 +184,7 @@ struct ZSweepRenderer::Impl {
     S.bin_entries = in.bins.items.size();
 
     const uint64_t shared = shared0 + in.bins.items.size() * 4 + in.bins.offset.size() * 8;
-    plan = plan_render(budget, shared, rs.tile_size, threads);
+    plan = plan_render(budget, shared, grid.max_tile_pixels(), threads);
     if (plan.max_fragments == 0)
       throw budget_too_small(rs, budget, shared + uint64_t(threads) * (tile_state + kMinPoolFragments * 16));
     S.fragment_capacity = plan.max_fragments;

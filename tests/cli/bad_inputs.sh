@@ -32,7 +32,7 @@ scene() { printf '%s' "$2" > "$tmp/$1.json"; echo "$tmp/$1.json"; }
 
 # Images of zero size, or too large for the budget or the format: refused
 # before anything large is allocated (these would need gigabytes).
-expect zero_width 2 '^zsweep: error: --width: Value 0 not in range 1 to 1048576 \(see --help\)$' -"$tmp/o.png" -- \
+expect zero_width 2 '^zsweep: error: --width: 0 is out of range: must be in \[1, 1048576\] \(see --help\)$' -"$tmp/o.png" -- \
   render --width 0 -o "$tmp/o.png"
 expect zero_width_scene 1 'image.width must be an integer from 1 to 1048576$' -"$tmp/o.png" -- \
   render "$(scene zw '{"mesh": "'"$cube"'", "image": {"width": 0}}')" -o "$tmp/o.png"
@@ -77,7 +77,7 @@ expect tf_number_overflow 1 "tfn.json: invalid JSON: .*number overflow parsing '
   render "$(scene tfn '{"mesh": "'"$cube"'", "transfer_function": {"color": [[0,0,0,0]], "opacity": [[0,1e999]]}}')" -o "$tmp/o.png"
 expect budget_not_representable 1 'render.memory_budget_mb must be positive and below 2\^44$' -"$tmp/o.png" -- \
   render "$(scene mb '{"mesh": "'"$cube"'", "render": {"memory_budget_mb": 1e40}}')" -o "$tmp/o.png"
-expect budget_option_range 2 '^zsweep: error: --memory-budget: Value 0 not in range' -"$tmp/o.png" -- \
+expect budget_option_range 2 '^zsweep: error: --memory-budget: 0 is out of range: must be positive and at most 1.7e\+13 \(see --help\)$' -"$tmp/o.png" -- \
   render "$cube" --memory-budget 0 -o "$tmp/o.png"
 expect empty_mesh 1 'empty0.off: mesh has no tets$' -"$tmp/o.png" -- \
   render "$(printf '0 0\n' > "$tmp/empty0.off"; echo "$tmp/empty0.off")" -o "$tmp/o.png"

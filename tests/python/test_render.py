@@ -225,6 +225,49 @@ def test_errors_carry_the_cli_message(tmp_path):
         zsweep.render(width=8, height=8, channels=["AO"])
 
 
+def test_options_are_checked_as_on_the_command_line(tmp_path):
+    off = tmp_path / "t.off"
+    off.write_text("4 1\n0 0 0 0\n1 0 0 1\n0 1 0 2\n0 0 1 3\n0 1 2 3\n")
+    # An unknown array name lists the arrays there are.
+    with pytest.raises(RuntimeError, match=r"no array named 'nosuch'; available: scalar \(point\)"):
+        zsweep.render(off, scalar="nosuch", width=8, height=8)
+    # A scene's own mesh: the keyword would be ignored, so it is refused.
+    with pytest.raises(ValueError, match="scalar applies to a mesh file"):
+        zsweep.render({"mesh": {"points": np.eye(4, 3), "tets": [[0, 1, 2, 3]]}}, scalar="nosuch")
+    with pytest.raises(ValueError, match="width: 64.5 is not a whole number"):
+        zsweep.render(width=64.5)
+    with pytest.raises(ValueError, match=r"width: 0 is out of range: must be in \[1, 1048576\]"):
+        zsweep.render(width=0)
+    with pytest.raises(ValueError, match=r"early_termination: -1 is out of range: must be in \[0, 255\]"):
+        zsweep.render(early_termination=-1)
+    with pytest.raises(ValueError, match=r"max_list_length: -5 is out of range"):
+        zsweep.render(max_list_length=-5)
+    with pytest.raises(TypeError, match="width must be a number"):
+        zsweep.render(width="wide")
+    sph = tmp_path / "s.sph"
+    sph.write_text("0 0 0 1\n")
+    with pytest.raises(ValueError, match="integrator applies to tet meshes only, and this is a sphere set"):
+        zsweep.render(sph, integrator="exact")
+    with pytest.raises(ValueError, match="variant applies to the bconvert scan"):
+        zsweep.render(variant="dilate", width=8, height=8)
+    with pytest.raises(ValueError, match="ao_samples applies to sphere sets only"):
+        zsweep.reference(ao_samples=4, width=8, height=8)
+    assert zsweep.render(off, scalar="scalar", width=8, height=8).shape == (8, 8, 4)
+
+
+def test_constant_default_scalar_gives_way_as_in_the_file_reader(cli, tmp_path):
+    g = hex_grid()
+    flat = numpy_to_vtk(np.ones(g.GetNumberOfPoints()), deep=True)
+    flat.SetName("density")
+    g.GetPointData().SetScalars(flat)  # constant: 'height' is the first array that varies
+    write_vtu(g, tmp_path / "flat.vtu")
+    ref, _ = cli(tmp_path / "flat.vtu", "--width", 48, "--height", 40)
+    img = zsweep.render(dict(VOLUME, mesh=g))
+    same(img, ref[:, :, :4])
+    named = zsweep.render(dict(VOLUME, mesh={"data": g, "scalar": "height"}))
+    same(img, named)
+
+
 def test_render_releases_the_gil():
     c, r = sphere_arrays(3000, seed=5)
     scene = {"image": {"width": 256, "height": 256}, "spheres": {"centers": c, "radii": r * 0.3},

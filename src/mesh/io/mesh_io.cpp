@@ -9,6 +9,7 @@
 #include "mesh/io/vtk_io.h"
 #include "surfaces/io/surface_reader.h"
 #include "util/file_error.h"
+#include "util/input_file.h"
 #include "util/atomic_file.h"
 
 namespace zs {
@@ -32,17 +33,26 @@ MeshFormat format_of(const std::string& path, const ReadOptions& opt) {
 }
 
 TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw FileError(path, "no such file");
-  if (fs::is_directory(path, ec)) throw FileError(path, "is a directory, not a mesh file");
+  require_input_file(path, "a mesh file");
   // Said before any reader runs: the tet OFF reader would otherwise stop at
   // the keyword, and .obj/.ply/.stl be an unknown format.
   if (is_surface_file(path))
     throw FileError(path, "a triangle surface, not a tetrahedral mesh (this command takes tet meshes: .off without "
                           "the OFF keyword, .vtu, .vtk, .node/.ele, PLOT3D; render and mesh info take surfaces)");
-  switch (format_of(path, opt)) {
-    case MeshFormat::Off:
-      return read_off(path);
+  const MeshFormat format = format_of(path, opt);
+  if (!opt.q_path.empty() && format != MeshFormat::Plot3d)
+    throw FileError(path, "a PLOT3D solution file (" + opt.q_path + ") applies to PLOT3D grids only, and this is a " +
+                              lower_ext(path) + " mesh");
+  if (format == MeshFormat::Off || format == MeshFormat::TetGen) {
+    // One unnamed scalar column at most: a name is either it or a mistake.
+    TetMesh m = format == MeshFormat::Off ? read_off(path) : read_tetgen(path);
+    const std::string have = m.scalar_name.empty() ? "scalar" : m.scalar_name;
+    if (!opt.scalar.empty() && opt.scalar != have)
+      throw FileError(path, "no array named '" + opt.scalar + "'; available: " +
+                                (m.has_scalars() ? have + " (point)" : std::string("none")));
+    return m;
+  }
+  switch (format) {
     case MeshFormat::Vtu:
     case MeshFormat::VtkLegacy:
       return read_vtk(path, opt);
@@ -50,8 +60,8 @@ TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
       if (opt.q_path.empty())
         throw FileError(path, "PLOT3D grid needs its solution file (--q FILE)");
       return read_plot3d(path, opt);
-    case MeshFormat::TetGen:
-      return read_tetgen(path);
+    case MeshFormat::Off:
+    case MeshFormat::TetGen:  // read above
     case MeshFormat::Unknown:
       break;
   }

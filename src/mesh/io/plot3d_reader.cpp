@@ -16,10 +16,13 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <new>
+#include <string>
+#include <vector>
 
 #include "mesh/io/vtk_capture.h"
 #include "mesh/io/vtk_io.h"
@@ -138,7 +141,7 @@ bool plausible_xyz(const std::string& path) {
 
 // Runs the VTK reader; returns the output or nullptr (errors captured).
 vtkSmartPointer<vtkMultiBlockDataSet> run_reader(const std::string& xyz, const std::string& q,
-                                                 const Function& fn,
+                                                 const std::vector<const Function*>& fns,
                                                  detail::VtkMessageCapture& capture) {
   auto r = vtkSmartPointer<vtkMultiBlockPLOT3DReader>::New();
   capture.watch(r);
@@ -148,10 +151,57 @@ vtkSmartPointer<vtkMultiBlockDataSet> run_reader(const std::string& xyz, const s
   // matching the file size against the header. Always on: with fixed settings
   // VTK trusts the header's dimensions and crashes on garbage input.
   r->AutoDetectFormatOn();
-  if (fn.number != 100 && fn.number != 163 && fn.number != 140) r->AddFunction(fn.number);
+  // Density and stagnation energy are read as they are; internal energy is ours.
+  for (const Function* fn : fns)
+    if (fn->number != 100 && fn->number != 163 && fn->number != 140) r->AddFunction(fn->number);
   r->Update();
   if (capture.has_error()) return nullptr;
   return r->GetOutput();
+}
+
+// A function's values in one block: its array, or (140) the Q variables it is
+// computed from; null arrays when the reader did not produce them.
+struct FunctionArrays {
+  const Function* fn = nullptr;
+  vtkDataArray *f = nullptr, *rho = nullptr, *mom = nullptr, *energy = nullptr;
+  bool ok() const { return fn->number == 140 ? rho && mom && energy : f != nullptr; }
+  double at(vtkIdType i) const {
+    if (fn->number != 140) return f->GetComponent(i, 0);
+    // Specific internal energy e = E/rho - |m|^2 / (2 rho^2).
+    const double r = rho->GetComponent(i, 0);
+    double mm = 0;
+    for (int c = 0; c < 3; ++c) mm += mom->GetComponent(i, c) * mom->GetComponent(i, c);
+    return energy->GetComponent(i, 0) / r - 0.5 * mm / (r * r);
+  }
+};
+
+FunctionArrays arrays_of(vtkPointData* pd, const Function& fn) {
+  return {&fn, fn.number == 140 ? nullptr : pd->GetArray(fn.array), pd->GetArray("Density"), pd->GetArray("Momentum"),
+          pd->GetArray("StagnationEnergy")};
+}
+
+// The finite range of `fn` over every block; lo > hi when it has no finite value.
+void function_range(vtkMultiBlockDataSet* mb, const Function& fn, bool* produced, double* lo, double* hi) {
+  *lo = INFINITY, *hi = -INFINITY, *produced = true;
+  for (unsigned b = 0; b < mb->GetNumberOfBlocks(); ++b) {
+    auto* sg = vtkStructuredGrid::SafeDownCast(mb->GetBlock(b));
+    if (!sg || sg->GetNumberOfPoints() == 0) continue;
+    const FunctionArrays a = arrays_of(sg->GetPointData(), fn);
+    if (!a.ok()) {
+      *produced = false;
+      return;
+    }
+    for (vtkIdType i = 0; i < sg->GetNumberOfPoints(); ++i) {
+      const double v = a.at(i);
+      if (std::isfinite(v)) *lo = std::min(*lo, v), *hi = std::max(*hi, v);
+    }
+  }
+}
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
 }
 
 // Key for exact coordinate equality: bit patterns (a total order, safe with
@@ -213,23 +263,57 @@ TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt) {
   if (opt.q_path.empty())
     throw FileError(xyz_path, "PLOT3D grid needs its solution file (--q FILE)");
   require_file(opt.q_path, "solution");
-  const Function& fn = find_function(xyz_path, opt.scalar);
+  const Function& fn0 = find_function(xyz_path, opt.scalar);
 
   if (!plausible_xyz(xyz_path))
     throw FileError(xyz_path, "not a binary 3-D PLOT3D grid (file size does not match its header)");
 
   detail::VtkMessageCapture capture;
   vtkSmartPointer<vtkMultiBlockDataSet> mb;
-  try {
-    mb = run_reader(xyz_path, opt.q_path, fn, capture);
-  } catch (const std::bad_alloc&) {
-    throw FileError(xyz_path, "PLOT3D reader ran out of memory (corrupt header?)");
-  }
-  if (!mb)
-    throw FileError(xyz_path,
-                    "PLOT3D reader: " + capture.first_error() + " (q file " + opt.q_path + ")");
+  auto read = [&](const std::vector<const Function*>& fns) {
+    try {
+      mb = run_reader(xyz_path, opt.q_path, fns, capture);
+    } catch (const std::bad_alloc&) {
+      throw FileError(xyz_path, "PLOT3D reader ran out of memory (corrupt header?)");
+    }
+    if (!mb)
+      throw FileError(xyz_path,
+                      "PLOT3D reader: " + capture.first_error() + " (q file " + opt.q_path + ")");
+  };
+  read({&fn0});
 
   TetMesh m;
+  // No function named and density constant (a uniform free stream, as in
+  // the oxygen post): the first function that varies, so the default
+  // render shows the flow rather than a flat disc.
+  const Function* chosen = &fn0;
+  bool produced = true;
+  double lo = 0, hi = 0;
+  if (opt.scalar.empty()) function_range(mb, fn0, &produced, &lo, &hi);
+  if (opt.scalar.empty() && produced && !(lo < hi)) {
+    std::vector<const Function*> all;
+    for (const Function& f : kFunctions) all.push_back(&f);
+    const vtkSmartPointer<vtkMultiBlockDataSet> first = mb;
+    bool read_all = true;
+    try {
+      read(all);
+    } catch (const FileError&) {
+      read_all = false;  // a function VTK cannot compute here: keep density
+    }
+    for (const Function& f : kFunctions) {
+      double flo, fhi;
+      bool fp;
+      if (!read_all) break;
+      function_range(mb, f, &fp, &flo, &fhi);
+      if (fp && flo < fhi) {
+        chosen = &f;
+        m.scalar_choice = std::string("'") + fn0.array + "' is constant (" + num(lo) + ")";
+        break;
+      }
+    }
+    if (chosen == &fn0) mb = first;
+  }
+  const Function& fn = *chosen;
   m.scalar_name = fn.array;
   size_t hexes = 0, blanked = 0, fringe = 0, blocks = 0;
   bool has_iblank = false;
@@ -243,11 +327,8 @@ TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt) {
                                     std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
                                     std::to_string(d[2]) + ")");
     vtkPointData* pd = sg->GetPointData();
-    vtkDataArray* rho = pd->GetArray("Density");
-    vtkDataArray* mom = pd->GetArray("Momentum");
-    vtkDataArray* energy = pd->GetArray("StagnationEnergy");
-    vtkDataArray* f = fn.number == 140 ? nullptr : pd->GetArray(fn.array);
-    if (fn.number == 140 ? !(rho && mom && energy) : !f)
+    const FunctionArrays values = arrays_of(pd, fn);
+    if (!values.ok())
       throw FileError(xyz_path, std::string("PLOT3D reader produced no '") + fn.array +
                                     "' array (does the q file match the grid?)");
     vtkDataArray* iblank = pd->GetArray("IBlank");
@@ -259,15 +340,7 @@ TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt) {
     for (vtkIdType i = 0; i < np; ++i) {
       sg->GetPoint(i, p);
       m.points.emplace_back(p[0], p[1], p[2]);
-      if (fn.number == 140) {
-        // Specific internal energy e = E/rho - |m|^2 / (2 rho^2).
-        const double r = rho->GetComponent(i, 0);
-        double mm = 0;
-        for (int c = 0; c < 3; ++c) mm += mom->GetComponent(i, c) * mom->GetComponent(i, c);
-        m.scalars.push_back(energy->GetComponent(i, 0) / r - 0.5 * mm / (r * r));
-      } else {
-        m.scalars.push_back(f->GetComponent(i, 0));
-      }
+      m.scalars.push_back(values.at(i));
       if (iblank && iblank->GetComponent(i, 0) < 0) ++fringe;
     }
 
@@ -324,7 +397,8 @@ TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt) {
         count(degenerate) +
         " tets are degenerate: zero volume or a vertex repeated (collapsed grid cells)");
   m.notes.push_back("scalar: PLOT3D function " + std::to_string(fn.number) + " (" + fn.name + ")" +
-                    (fn.number == 140 ? ", computed as E/rho - |V|^2/2" : ""));
+                    (fn.number == 140 ? ", computed as E/rho - |V|^2/2" : "") +
+                    (m.scalar_choice.empty() ? "" : ", the first that varies: " + m.scalar_choice));
   if (nonfinite > 0)
     m.notes.push_back(count(nonfinite) +
                       " scalar values are not finite (function undefined "

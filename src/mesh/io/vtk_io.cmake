@@ -2,6 +2,7 @@
 add_library(zsweep_vtkio STATIC
   ${CMAKE_CURRENT_LIST_DIR}/vtk_capture.cpp    # VTK error text -> FileError, not stderr
   ${CMAKE_CURRENT_LIST_DIR}/vtk_reader.cpp     # .vtu / legacy .vtk -> tets
+  ${CMAKE_CURRENT_LIST_DIR}/vtk_scalar.cpp     # which array becomes the point scalar
   ${CMAKE_CURRENT_LIST_DIR}/vtu_writer.cpp     # tets -> .vtu
   ${CMAKE_CURRENT_LIST_DIR}/plot3d_reader.cpp  # PLOT3D -> 5-tet split, merged points
 )

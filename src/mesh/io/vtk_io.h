@@ -37,7 +37,8 @@ void write_vtu(const std::string& path, const TetMesh& m);
 
 // PLOT3D grid + solution (big-endian binary, IBLANK honoured), each hex split
 // into 5 tets with alternating parity, duplicate points merged.
-// opt.scalar: density (default) | velocity-magnitude | pressure | ...
+// opt.scalar: density (default; when it is constant, the first function
+// that varies) | velocity-magnitude | pressure | ...
 TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt);
 
 }  // namespace zs

@@ -35,12 +35,14 @@
 #include <stdexcept>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
 
 #include "mesh/io/vtk_capture.h"
+#include "mesh/io/vtk_scalar.h"
 #include "mesh/io/vtk_io.h"
 #include "util/file_error.h"
 
@@ -119,102 +121,6 @@ vtkSmartPointer<vtkDataSet> read_dataset(const std::string& path,
   if (ds->GetNumberOfPoints() == 0 || ds->GetNumberOfCells() == 0)
     throw FileError(path, "no cells (empty or unreadable VTK file)");
   return ds;
-}
-
-// ---------------------------------------------------------------- scalars
-
-bool usable(vtkDataArray* a) {
-  return a && a->GetName() && std::string(a->GetName()) != vtkDataSetAttributes::GhostArrayName() &&
-         a->GetNumberOfComponents() > 0;
-}
-
-std::string array_list(vtkDataSet* ds) {
-  std::string s;
-  auto add = [&](vtkDataSetAttributes* attrs, const char* where) {
-    for (int i = 0; i < attrs->GetNumberOfArrays(); ++i) {
-      vtkDataArray* a = attrs->GetArray(i);
-      if (!usable(a)) continue;
-      s += (s.empty() ? "" : ", ") + std::string(a->GetName()) + " (" + where + ")";
-    }
-  };
-  add(ds->GetPointData(), "point");
-  add(ds->GetCellData(), "cell");
-  return s.empty() ? "none" : s;
-}
-
-vtkDataArray* first_usable(vtkDataSetAttributes* attrs) {
-  if (usable(attrs->GetScalars())) return attrs->GetScalars();
-  for (int i = 0; i < attrs->GetNumberOfArrays(); ++i)
-    if (usable(attrs->GetArray(i))) return attrs->GetArray(i);
-  return nullptr;
-}
-
-// Averages one cell array onto the points (each point: mean of the cells
-// that use it) and returns the resulting point array.
-vtkSmartPointer<vtkDataArray> cell_to_point(vtkDataSet* ds, const std::string& name,
-                                            const std::string& path,
-                                            detail::VtkMessageCapture& capture) {
-  auto c2p = vtkSmartPointer<vtkCellDataToPointData>::New();
-  capture.watch(c2p);
-  c2p->SetInputData(ds);
-  c2p->ProcessAllArraysOff();
-  c2p->AddCellDataArray(name.c_str());
-  c2p->PassCellDataOff();
-  c2p->Update();
-  vtkDataArray* a =
-      c2p->GetOutput() ? c2p->GetOutput()->GetPointData()->GetArray(name.c_str()) : nullptr;
-  if (!a || capture.has_error())
-    throw FileError(path, "cannot average cell data '" + name + "' onto points" +
-                              (capture.has_error() ? ": " + capture.first_error() : ""));
-  return a;
-}
-
-// Picks the scalar per opt.scalar / defaults, returns one value per point of
-// ds (empty if the file has no data arrays at all).
-std::vector<double> pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const std::string& path,
-                                TetMesh& m, detail::VtkMessageCapture& capture) {
-  vtkDataArray* pa = nullptr;
-  vtkDataArray* ca = nullptr;
-  if (!opt.scalar.empty()) {
-    pa = ds->GetPointData()->GetArray(opt.scalar.c_str());
-    if (!usable(pa)) {
-      pa = nullptr;
-      ca = ds->GetCellData()->GetArray(opt.scalar.c_str());
-      if (!usable(ca))
-        throw FileError(path, "no array named '" + opt.scalar + "'; available: " + array_list(ds));
-    }
-  } else {
-    pa = first_usable(ds->GetPointData());
-    if (!pa) ca = first_usable(ds->GetCellData());
-  }
-  if (!pa && !ca) {
-    m.notes.push_back("no point or cell data arrays: mesh has no scalar");
-    return {};
-  }
-  vtkSmartPointer<vtkDataArray> arr = pa;
-  if (ca) {
-    arr = cell_to_point(ds, ca->GetName(), path, capture);
-    m.notes.push_back("scalar '" + std::string(ca->GetName()) +
-                      "' is cell data: averaged onto points (vtkCellDataToPointData)");
-  }
-  m.scalar_name = arr->GetName();
-  const int nc = arr->GetNumberOfComponents();
-  if (nc > 1)
-    m.notes.push_back("array '" + m.scalar_name + "' has " + std::to_string(nc) +
-                      " components: using its magnitude");
-  std::vector<double> s(static_cast<size_t>(ds->GetNumberOfPoints()));
-  std::vector<double> tuple(static_cast<size_t>(nc));
-  for (vtkIdType i = 0; i < ds->GetNumberOfPoints(); ++i) {
-    if (nc == 1) {
-      s[static_cast<size_t>(i)] = arr->GetComponent(i, 0);
-      continue;
-    }
-    arr->GetTuple(i, tuple.data());
-    double q = 0;
-    for (double v : tuple) q += v * v;
-    s[static_cast<size_t>(i)] = std::sqrt(q);
-  }
-  return s;
 }
 
 // ---------------------------------------------------------------- cells
@@ -415,7 +321,7 @@ TetMesh tet_mesh_of(vtkDataSet* ds, const ReadOptions& opt, const std::string& p
   if (ds->GetNumberOfPoints() >= static_cast<vtkIdType>(UINT32_MAX))
     throw FileError(path, "too many points for 32-bit tet indices");
   TetMesh m;
-  std::vector<double> scal = pick_scalar(ds, opt, path, m, capture);
+  std::vector<double> scal = detail::pick_scalar(ds, opt, path, m, capture);
   const bool structured = vtkImageData::SafeDownCast(ds) || vtkStructuredGrid::SafeDownCast(ds) ||
                           vtkRectilinearGrid::SafeDownCast(ds);
   std::vector<Tet> tets =
