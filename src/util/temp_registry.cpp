@@ -27,13 +27,18 @@ void remove_all() {
 
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ,
                             SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
+// The actions before ours (SIG_DFL, or a sanitizer's crash reporter).
+struct sigaction g_previous[NSIG];
 
-extern "C" void on_fatal_signal(int sig) {
+extern "C" void on_fatal_signal(int sig, siginfo_t* info, void*) {
   remove_all();
-  // Die as the signal would have: restore its default action and raise it
-  // again (it is blocked in this handler, so it arrives on return).
-  std::signal(sig, SIG_DFL);
-  ::raise(sig);
+  // Then whatever would have happened without us: the previous action back,
+  // and the signal again. A fault (SIGSEGV from a bad access) recurs by
+  // itself when the handler returns, with its real address for a
+  // sanitizer's report; a sent one is raised again (it is blocked in this
+  // handler, so it arrives on return).
+  sigaction(sig, &g_previous[sig], nullptr);
+  if (info == nullptr || info->si_code <= 0) ::raise(sig);
 }
 
 }  // namespace
@@ -63,16 +68,16 @@ int registered_temp_files() {
 
 void install_temp_cleanup() {
   struct sigaction sa {};
-  sa.sa_handler = on_fatal_signal;
+  sa.sa_sigaction = on_fatal_signal;
+  sa.sa_flags = SA_SIGINFO;
   sigemptyset(&sa.sa_mask);
   // Every handled signal is blocked while one is handled, so two signals in
   // a row do not interrupt the removal half way.
   for (int s : kSignals) sigaddset(&sa.sa_mask, s);
   for (int s : kSignals) {
-    struct sigaction old {};
-    sigaction(s, nullptr, &old);
+    sigaction(s, nullptr, &g_previous[s]);
     // A signal the parent ignores (nohup, `trap '' HUP`) stays ignored.
-    if (old.sa_handler == SIG_IGN) continue;
+    if (g_previous[s].sa_handler == SIG_IGN) continue;
     sigaction(s, &sa, nullptr);
   }
 }

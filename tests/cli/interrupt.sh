@@ -10,6 +10,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 # Job control on: without it bash starts background jobs with SIGINT and
 # SIGQUIT ignored, and zsweep keeps a signal its parent ignores.
 set -m
+ulimit -c 0  # SIGQUIT dumps core by default
 cd "$tmp" || exit 1
 for ext in exr png; do
   echo "an older output" > "big.$ext"

@@ -27,7 +27,8 @@ fails_with 1 "zsweep: error: $img: no voxel is below iso -1 $range" \
   "$zsweep" mesh generate image "$img" --iso -1 --below -o "$tmp/x.off"
 fails_with 1 "zsweep: error: $img: every voxel is above iso 0.1 $range: the solid would be the whole image box" \
   "$zsweep" mesh generate image "$img" --iso 0.1 -o "$tmp/x.off"
-fails_with 1 "zsweep: error: $img: iso value nan is not a finite number" \
+# NaN never reaches the mesher: every number option refuses it (a usage error).
+fails_with 2 "zsweep: error: --iso: 'nan' is not a number (see --help)" \
   "$zsweep" mesh generate image "$img" --iso nan -o "$tmp/x.off"
 
 # Sizes that need more points than the limit: refused before meshing.

@@ -76,8 +76,8 @@ void write_mesh(const std::string& path, const TetMesh& m) {
     AtomicFile ele(fs::path(path).replace_extension(".ele").string());
     try {
       write_tetgen(node.temp_path(), m);
-    } catch (const std::exception& e) {
-      throw std::runtime_error(ele.name_final(node.name_final(e.what())));
+    } catch (const FileError& e) {
+      throw FileError(ele.name_final(node.name_final(e.what())));  // name the outputs, not their temporaries
     }
     // write_tetgen wrote <tmpbase>.node and <tmpbase>.ele; the ele temp name
     // differs from AtomicFile's pick, so move it there first.
@@ -92,8 +92,8 @@ void write_mesh(const std::string& path, const TetMesh& m) {
   try {
     if (f == MeshFormat::Off) write_off(out.temp_path(), m);
     else write_vtu(out.temp_path(), m);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(out.name_final(e.what()));  // name the output, not its temporary
+  } catch (const FileError& e) {
+    throw FileError(out.name_final(e.what()));  // name the output, not its temporary
   }
   out.commit();
 }
