@@ -11,7 +11,7 @@
 #include "app/option_checks.h"
 #include "cli/commands.h"
 #include "mpi/mpi_env.h"
-#include "util/temp_registry.h"
+#include "base/util/temp_registry.h"
 
 int main(int argc, char** argv) {
 #if defined(__GLIBC__)

@@ -5,12 +5,12 @@
 #include <stdexcept>
 
 #include "app/scene_job.h"
-#include "mesh/topology.h"
-#include "mesh/validate.h"
-#include "reference/reference_renderer.h"
-#include "reference/sphere_reference.h"
-#include "shadows/ao_directions.h"
-#include "spheres/sphere_colors.h"
+#include "geometry/tets/topology.h"
+#include "geometry/tets/validate.h"
+#include "render/reference/reference_renderer.h"
+#include "render/reference/sphere_reference.h"
+#include "lighting/ao_directions.h"
+#include "geometry/spheres/sphere_colors.h"
 
 namespace zs {
 
@@ -83,7 +83,7 @@ ReferenceImage reference_spheres(SceneInput& in, uint32_t ao_samples) {
 ReferenceImage reference_volume(SceneInput& in) {
   const Topology topo = build_topology(in.mesh);
   ReferenceStats s;
-  Image img = render_reference(in.mesh, topo, in.scene.settings, &s);
+  Image img = render_reference(in.mesh, topo, in.scene.settings, in.scene.settings.tf, &s);
   ReferenceImage out;
   out.width = img.width;
   out.height = img.height;

@@ -7,8 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "spheres/sphere_io.h"
-#include "surfaces/io/surface_reader.h"
+#include "geometry/spheres/sphere_io.h"
+#include "geometry/triangles/io/surface_reader.h"
 
 namespace zs {
 

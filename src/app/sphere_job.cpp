@@ -1,4 +1,4 @@
-// Sphere scenes: the sphere-sprite renderer (src/sprites/), its colours,
+// Sphere scenes: the sphere-sprite renderer (src/render/spheres/), its colours,
 // grid and AO maps made once and shared by every frame.
 #include <chrono>
 #include <cmath>
@@ -6,10 +6,10 @@
 #include <stdexcept>
 
 #include "app/scene_jobs.h"
-#include "spheres/sphere_colors.h"
-#include "sprites/sphere_ao.h"
-#include "sprites/sphere_renderer.h"
-#include "util/memory.h"
+#include "geometry/spheres/sphere_colors.h"
+#include "render/spheres/sphere_ao.h"
+#include "render/spheres/sphere_renderer.h"
+#include "base/util/memory.h"
 
 namespace zs {
 
@@ -38,7 +38,7 @@ class SphereJob : public SceneJob {
     // depend on the view), when they fit the budget; else every frame builds
     // and consumes them in batches (the renderer says when it cannot).
     if (srs_.ao.directions) {
-      const uint64_t budget = srs_.memory_budget_bytes ? srs_.memory_budget_bytes : default_memory_budget();
+      const uint64_t budget = srs_.budget();
       ao_ = sphere_ao_maps(in.spheres, colors_, srs_, budget > held_ ? budget - held_ : 0);
       if (!ao_) srs_.ao.batches = true;
     }

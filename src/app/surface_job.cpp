@@ -1,10 +1,10 @@
-// Surface scenes: the z-buffer surface renderer with shadows (src/surface/).
+// Surface scenes: the z-buffer surface renderer with shadows (src/render/surfaces/).
 #include <algorithm>
 #include <cstdio>
 #include <string>
 
 #include "app/scene_jobs.h"
-#include "surface/surface_renderer.h"
+#include "render/surfaces/surface_renderer.h"
 
 namespace zs {
 

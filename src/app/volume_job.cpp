@@ -1,16 +1,16 @@
-// Volume scenes: the ZSweep engine (src/volume/) on a tet mesh.
+// Volume scenes: the ZSweep engine (src/render/volume/) on a tet mesh.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "app/scene_jobs.h"
-#include "mesh/topology.h"
-#include "mesh/validate.h"
-#include "util/memory.h"
-#include "view/camera.h"
-#include "volume/render_plan.h"
-#include "volume/segment_batch.h"
-#include "volume/zsweep_renderer.h"
+#include "geometry/tets/topology.h"
+#include "geometry/tets/validate.h"
+#include "base/util/memory.h"
+#include "base/view/camera.h"
+#include "render/volume/render_plan.h"
+#include "render/volume/segment_batch.h"
+#include "render/volume/zsweep_renderer.h"
 
 namespace zs {
 

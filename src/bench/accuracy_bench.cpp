@@ -14,12 +14,12 @@
 
 #include "bench/bench_inputs.h"
 #include "bench/line_plot.h"
-#include "image/image_compare.h"
-#include "mesh/topology.h"
-#include "reference/reference_renderer.h"
+#include "output/image_compare.h"
+#include "geometry/tets/topology.h"
+#include "render/reference/reference_renderer.h"
 #include "scene/scene_input.h"
-#include "util/atomic_file.h"
-#include "volume/zsweep_renderer.h"
+#include "base/util/atomic_file.h"
+#include "render/volume/zsweep_renderer.h"
 
 namespace zs {
 
@@ -115,7 +115,7 @@ std::vector<AccuracyRow> run_accuracy_bench(const AccuracyBenchOptions& opt) {
       const RenderSettings& rs0 = in.scene.settings;
       ReferenceStats rstats;
       const auto tr = Clock::now();
-      const Image ref = render_reference(in.mesh, topo, rs0, &rstats);
+      const Image ref = render_reference(in.mesh, topo, rs0, rs0.tf, &rstats);
       const double ref_ms = ms_since(tr);
       std::fprintf(stderr, "%s %u²: reference %.0f ms (%llu lost walks)\n", name.c_str(), size, ref_ms,
                    (unsigned long long)rstats.lost_walks);

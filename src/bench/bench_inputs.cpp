@@ -10,10 +10,10 @@
 #include <unistd.h>
 
 #include "scene/scene.h"
-#include "spheres/sphere_io.h"
-#include "surfaces/io/surface_reader.h"
-#include "util/atomic_file.h"
-#include "util/file_error.h"
+#include "geometry/spheres/sphere_io.h"
+#include "geometry/triangles/io/surface_reader.h"
+#include "base/util/atomic_file.h"
+#include "base/util/file_error.h"
 
 namespace zs {
 

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "util/atomic_file.h"
+#include "base/util/atomic_file.h"
 
 namespace zs {
 

@@ -1,5 +1,5 @@
 #include "bench/scan_bench.h"
-#include "util/memory.h"
+#include "base/util/memory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,12 +11,12 @@
 #include <stdexcept>
 
 #include "bench/bench_inputs.h"
-#include "mesh/topology.h"
+#include "geometry/tets/topology.h"
 #include "raster/tile_sink.h"
 #include "scene/scene.h"
 #include "scene/scene_input.h"
-#include "util/atomic_file.h"
-#include "volume/zsweep_renderer.h"
+#include "base/util/atomic_file.h"
+#include "render/volume/zsweep_renderer.h"
 
 namespace zs {
 
@@ -68,7 +68,7 @@ std::vector<ScanBenchRow> run_scan_bench(const ScanBenchOptions& opt) {
   check_volume_inputs(opt.inputs, "bench scan", false);  // all of them, before the first is measured
   const std::vector<std::string> names = bench_row_names(opt.inputs);
   std::vector<ScanBenchRow> rows;
-  const uint64_t budget = opt.memory_budget_bytes ? opt.memory_budget_bytes : default_memory_budget();
+  const uint64_t budget = frame_budget(opt.memory_budget_bytes);
   for (size_t i = 0; i < opt.inputs.size(); ++i) {
     const SceneInput in = load_scene_input(opt.inputs[i], {});
     const Scene& scene = in.scene;

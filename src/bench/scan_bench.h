@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "raster/bconvert_scan.h"
-#include "volume/render_settings.h"
+#include "render/volume/render_settings.h"
 
 namespace zs {
 

@@ -11,7 +11,7 @@
 
 #include "bench/line_plot.h"
 #include "bench/scan_bench.h"
-#include "util/atomic_file.h"
+#include "base/util/atomic_file.h"
 
 namespace zs {
 

@@ -10,8 +10,8 @@
 
 #include "app/option_checks.h"
 #include "cli/commands.h"
-#include "image/image.h"
-#include "image/image_compare.h"
+#include "output/image_io.h"
+#include "output/image_compare.h"
 
 namespace zs {
 

@@ -3,7 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "util/atomic_file.h"
+#include "base/util/atomic_file.h"
 
 namespace zs {
 

@@ -19,14 +19,14 @@
 
 #include "app/option_checks.h"
 #include "cli/commands.h"
-#include "mesh/generate/cgal_mesher.h"
-#include "mesh/generate/scalar_fields.h"
-#include "mesh/generate/shape_mesher.h"
-#include "mesh/generate/shapes.h"
-#include "mesh/generate/surface_io.h"
-#include "mesh/generate/tetgen_mesher.h"
-#include "mesh/generate/voxel_image.h"
-#include "mesh/io/mesh_io.h"
+#include "geometry/tets/generate/cgal_mesher.h"
+#include "geometry/tets/generate/scalar_fields.h"
+#include "geometry/tets/generate/shape_mesher.h"
+#include "geometry/tets/generate/shapes.h"
+#include "geometry/tets/generate/surface_io.h"
+#include "geometry/tets/generate/tetgen_mesher.h"
+#include "geometry/tets/generate/voxel_image.h"
+#include "geometry/tets/io/mesh_io.h"
 
 namespace zs {
 

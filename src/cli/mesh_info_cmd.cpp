@@ -17,10 +17,10 @@
 #include "cli/mesh_source.h"
 #include "cli/sphere_info.h"
 #include "cli/surface_info.h"
-#include "mesh/topology.h"
-#include "mesh/validate.h"
-#include "spheres/sphere_io.h"
-#include "surfaces/io/surface_reader.h"
+#include "geometry/tets/topology.h"
+#include "geometry/tets/validate.h"
+#include "geometry/spheres/sphere_io.h"
+#include "geometry/triangles/io/surface_reader.h"
 
 namespace zs {
 

@@ -6,10 +6,10 @@
 #include <stdexcept>
 
 #include "app/option_checks.h"
-#include "mesh/default_mesh.h"
-#include "spheres/sphere_io.h"
-#include "surfaces/io/surface_reader.h"
-#include "util/file_error.h"
+#include "geometry/tets/default_mesh.h"
+#include "geometry/spheres/sphere_io.h"
+#include "geometry/triangles/io/surface_reader.h"
+#include "base/util/file_error.h"
 
 namespace zs {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "mesh/io/mesh_io.h"
+#include "geometry/tets/io/mesh_io.h"
 
 namespace CLI {
 class App;

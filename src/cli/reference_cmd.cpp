@@ -15,9 +15,9 @@
 #include "app/reference_scene.h"
 #include "app/option_checks.h"
 #include "app/scene_args.h"
-#include "image/image.h"
-#include "image/tile_writer.h"
-#include "util/atomic_file.h"
+#include "output/image_io.h"
+#include "output/tile_writer.h"
+#include "base/util/atomic_file.h"
 
 namespace zs {
 

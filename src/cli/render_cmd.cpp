@@ -17,9 +17,9 @@
 #include "cli/render_file.h"
 #include "cli/render_mpi.h"
 #include "app/scene_args.h"
-#include "image/tile_writer.h"
-#include "mesh/validate.h"
-#include "util/atomic_file.h"
+#include "output/tile_writer.h"
+#include "geometry/tets/validate.h"
+#include "base/util/atomic_file.h"
 
 namespace zs {
 

@@ -9,7 +9,7 @@
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
-#include "spheres/sphere_io.h"
+#include "geometry/spheres/sphere_io.h"
 
 namespace zs {
 

@@ -10,12 +10,12 @@
 
 #include "app/option_checks.h"
 #include "cli/commands.h"
-#include "spheres/generate/demo_image.h"
-#include "spheres/generate/pore_balls.h"
-#include "spheres/generate/test_sets.h"
-#include "spheres/sphere_io.h"
-#include "util/atomic_file.h"
-#include "util/file_error.h"
+#include "geometry/spheres/generate/demo_image.h"
+#include "geometry/spheres/generate/pore_balls.h"
+#include "geometry/spheres/generate/test_sets.h"
+#include "geometry/spheres/sphere_io.h"
+#include "base/util/atomic_file.h"
+#include "base/util/file_error.h"
 
 namespace zs {
 

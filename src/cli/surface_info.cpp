@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "surfaces/closed_solids.h"
-#include "surfaces/io/surface_reader.h"
+#include "geometry/triangles/closed_solids.h"
+#include "geometry/triangles/io/surface_reader.h"
 
 namespace zs {
 

@@ -15,7 +15,7 @@
 
 #include <mpi.h>
 
-#include "util/memory.h"
+#include "base/util/memory.h"
 
 namespace zs {
 

@@ -23,8 +23,8 @@
 #include "app/reference_scene.h"
 #include "app/scene_args.h"
 #include "app/scene_job.h"
-#include "image/image.h"
-#include "image/image_compare.h"
+#include "output/image_io.h"
+#include "output/image_compare.h"
 #include "python/py_data.h"
 #include "python/py_generate.h"
 

@@ -6,7 +6,7 @@
 
 #include <pybind11/numpy.h>
 
-#include "mesh/io/vtk_io.h"
+#include "geometry/tets/io/vtk_io.h"
 
 
 namespace zs::python {

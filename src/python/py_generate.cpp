@@ -10,17 +10,17 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "mesh/generate/cgal_mesher.h"
-#include "mesh/generate/implicit_shapes.h"
-#include "mesh/generate/scalar_fields.h"
-#include "mesh/generate/shape_mesher.h"
-#include "mesh/generate/shapes.h"
-#include "mesh/generate/surface_io.h"
-#include "mesh/generate/tetgen_mesher.h"
-#include "mesh/generate/voxel_image.h"
-#include "spheres/generate/demo_image.h"
-#include "spheres/generate/pore_balls.h"
-#include "spheres/generate/test_sets.h"
+#include "geometry/tets/generate/cgal_mesher.h"
+#include "geometry/tets/generate/implicit_shapes.h"
+#include "geometry/tets/generate/scalar_fields.h"
+#include "geometry/tets/generate/shape_mesher.h"
+#include "geometry/tets/generate/shapes.h"
+#include "geometry/tets/generate/surface_io.h"
+#include "geometry/tets/generate/tetgen_mesher.h"
+#include "geometry/tets/generate/voxel_image.h"
+#include "geometry/spheres/generate/demo_image.h"
+#include "geometry/spheres/generate/pore_balls.h"
+#include "geometry/spheres/generate/test_sets.h"
 
 namespace py = pybind11;
 

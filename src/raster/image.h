@@ -1,5 +1,5 @@
 // A float RGBA image, premultiplied, linear; row 0 at the top. What a render
-// held in memory produces (image/image.h reads and writes them).
+// held in memory produces (output/image_io.h reads and writes them).
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 #include "scene/scene.h"
 
-#include "shadows/ao_directions.h"
+#include "lighting/ao_directions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,8 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene_json.h"
-#include "util/input_file.h"
-#include "shadows/ao_directions.h"
+#include "base/util/input_file.h"
+#include "lighting/ao_directions.h"
 
 namespace zs {
 

@@ -4,12 +4,12 @@
 
 #include <string>
 
-#include "mesh/io/mesh_io.h"
+#include "geometry/tets/io/mesh_io.h"
 #include "scene/scene_defaults.h"
 #include "scene/surface_scene.h"
-#include "spheres/sphere_colors.h"
-#include "sprites/sphere_settings.h"
-#include "volume/render_settings.h"
+#include "geometry/spheres/sphere_colors.h"
+#include "render/spheres/sphere_settings.h"
+#include "render/volume/render_settings.h"
 
 namespace zs {
 

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "mesh/tet_mesh.h"
-#include "optics/transfer_function.h"
-#include "view/camera.h"
+#include "geometry/tets/tet_mesh.h"
+#include "base/optics/transfer_function.h"
+#include "base/view/camera.h"
 
 namespace zs {
 

@@ -6,10 +6,10 @@
 #include <glm/common.hpp>
 #include <stdexcept>
 
-#include "mesh/default_mesh.h"
+#include "geometry/tets/default_mesh.h"
 #include "scene/surface_input.h"
-#include "spheres/sphere_io.h"
-#include "surfaces/io/surface_reader.h"
+#include "geometry/spheres/sphere_io.h"
+#include "geometry/triangles/io/surface_reader.h"
 
 namespace zs {
 

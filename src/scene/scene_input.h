@@ -6,12 +6,12 @@
 #include <map>
 #include <string>
 
-#include "mesh/io/mesh_io.h"
-#include "mesh/tet_mesh.h"
+#include "geometry/tets/io/mesh_io.h"
+#include "geometry/tets/tet_mesh.h"
 #include "scene/scene.h"
-#include "spheres/sphere_set.h"
-#include "surfaces/closed_solids.h"
-#include "surfaces/triangle_mesh.h"
+#include "geometry/spheres/sphere_set.h"
+#include "geometry/triangles/closed_solids.h"
+#include "geometry/triangles/triangle_mesh.h"
 
 namespace zs {
 

@@ -6,9 +6,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "surfaces/closed_solids.h"
-#include "surfaces/ground_height.h"
-#include "surfaces/io/surface_reader.h"
+#include "geometry/triangles/closed_solids.h"
+#include "geometry/triangles/ground_height.h"
+#include "geometry/triangles/io/surface_reader.h"
 
 namespace zs {
 

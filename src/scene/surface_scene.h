@@ -9,10 +9,10 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json_fwd.hpp>
 
-#include "shadows/light.h"
-#include "shadows/shadow_settings.h"
-#include "surface/surface_settings.h"
-#include "surface/surface_shading.h"
+#include "lighting/light.h"
+#include "lighting/shadow_settings.h"
+#include "render/surfaces/surface_settings.h"
+#include "lighting/surface_shading.h"
 
 namespace zs {
 

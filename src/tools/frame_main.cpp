@@ -12,10 +12,10 @@
 #include <exception>
 #include <string>
 
-#include "mesh/io/off_io.h"
-#include "mesh/topology.h"
+#include "geometry/tets/io/off_io.h"
+#include "geometry/tets/topology.h"
 #include "scene/scene_defaults.h"
-#include "volume/zsweep_renderer.h"
+#include "render/volume/zsweep_renderer.h"
 
 int main(int argc, char** argv) {
   using namespace zs;

@@ -24,9 +24,9 @@
 #include <random>
 #include <vector>
 
-#include "mesh/io/off_io.h"
+#include "geometry/tets/io/off_io.h"
 #include "scene/scene_defaults.h"
-#include "volume/segment_batch.h"
+#include "render/volume/segment_batch.h"
 
 int main(int argc, char** argv) {
   using namespace zs;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# An interrupted render leaves no temporary behind (util/temp_registry.h):
+# An interrupted render leaves no temporary behind (base/util/temp_registry.h):
 # SIGINT, SIGTERM, SIGHUP and SIGQUIT while tiles stream into an EXR or PNG
 # remove NAME.zs-tmp-PID-N.EXT, the process still dies of the signal (exit
 # status 128+N), and an output already there from before is untouched.

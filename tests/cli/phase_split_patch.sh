@@ -11,6 +11,6 @@ command -v git >/dev/null || { echo "SKIP: no git"; exit 77; }
 if (cd "$src" && git apply --check "$patch"); then
   echo "phase-split.patch: applies"
 else
-  echo "FAIL: scripts/phase-split.patch no longer applies to src/volume/{compositor.h,tile_sweep.cpp}; regenerate it"
+  echo "FAIL: scripts/phase-split.patch no longer applies to src/render/volume/{compositor.h,tile_sweep.cpp}; regenerate it"
   exit 1
 fi

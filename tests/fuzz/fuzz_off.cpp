@@ -7,8 +7,8 @@
 #include <string_view>
 
 #include "fuzz_render.h"
-#include "mesh/io/off_io.h"
-#include "util/file_error.h"
+#include "geometry/tets/io/off_io.h"
+#include "base/util/file_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace zs;

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "mesh/tet_mesh.h"
-#include "mesh/topology.h"
-#include "mesh/validate.h"
+#include "geometry/tets/tet_mesh.h"
+#include "geometry/tets/topology.h"
+#include "geometry/tets/validate.h"
 #include "scene/scene.h"
-#include "volume/zsweep_renderer.h"
+#include "render/volume/zsweep_renderer.h"
 
 namespace zs::fuzz {
 

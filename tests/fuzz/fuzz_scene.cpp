@@ -10,10 +10,10 @@
 #include <string>
 
 #include "fuzz_render.h"
-#include "mesh/default_mesh.h"
+#include "geometry/tets/default_mesh.h"
 #include "scene/scene_defaults.h"
-#include "spheres/sphere_colors.h"
-#include "sprites/sphere_renderer.h"
+#include "geometry/spheres/sphere_colors.h"
+#include "render/spheres/sphere_renderer.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <string_view>
 
 #include "fuzz_sphere_check.h"
-#include "util/file_error.h"
-#include "spheres/sphere_reader.h"
+#include "base/util/file_error.h"
+#include "geometry/spheres/sphere_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

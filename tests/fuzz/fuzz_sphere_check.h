@@ -13,9 +13,9 @@
 
 #include "raster/image_sink.h"
 #include "scene/scene_defaults.h"
-#include "spheres/sphere_colors.h"
-#include "spheres/sphere_set.h"
-#include "sprites/sphere_renderer.h"
+#include "geometry/spheres/sphere_colors.h"
+#include "geometry/spheres/sphere_set.h"
+#include "render/spheres/sphere_renderer.h"
 
 namespace zs::fuzz {
 

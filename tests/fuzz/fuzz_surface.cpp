@@ -13,8 +13,8 @@
 
 #include <unistd.h>
 
-#include "mesh/generate/surface_io.h"
-#include "util/file_error.h"
+#include "geometry/tets/generate/surface_io.h"
+#include "base/util/file_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;

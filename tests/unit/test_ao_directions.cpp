@@ -1,4 +1,4 @@
-// The AO direction sets (shadows/ao_directions.h): counts 2 + 4^(s+1),
+// The AO direction sets (lighting/ao_directions.h): counts 2 + 4^(s+1),
 // nesting, exact opposite pairs, unit length and an even spread.
 #include <cmath>
 #include <stdexcept>
@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "shadows/ao_directions.h"
+#include "lighting/ao_directions.h"
 
 namespace zs {
 namespace {

@@ -10,8 +10,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "shadows/shadow_map.h"
-#include "surfaces/closed_solids.h"
+#include "lighting/shadow_map.h"
+#include "geometry/triangles/closed_solids.h"
 
 namespace zs {
 namespace {

@@ -12,12 +12,12 @@
 
 #include <gtest/gtest.h>
 
-#include "optics/transfer_function.h"
-#include "view/camera.h"
-#include "volume/compositor.h"
-#include "volume/pixel_lists.h"
-#include "volume/segment_batch.h"
-#include "volume/segment_integrator.h"
+#include "base/optics/transfer_function.h"
+#include "base/view/camera.h"
+#include "render/volume/compositor.h"
+#include "render/volume/pixel_lists.h"
+#include "render/volume/segment_batch.h"
+#include "base/optics/segment_integrator.h"
 
 namespace zs {
 namespace {

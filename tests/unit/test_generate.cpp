@@ -14,15 +14,15 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/generate/cgal_mesher.h"
-#include "mesh/generate/scalar_fields.h"
-#include "mesh/generate/shape_mesher.h"
-#include "mesh/generate/shapes.h"
-#include "mesh/generate/surface_io.h"
-#include "mesh/generate/tet_ops.h"
-#include "mesh/generate/tetgen_mesher.h"
-#include "mesh/generate/voxel_image.h"
-#include "util/file_error.h"
+#include "geometry/tets/generate/cgal_mesher.h"
+#include "geometry/tets/generate/scalar_fields.h"
+#include "geometry/tets/generate/shape_mesher.h"
+#include "geometry/tets/generate/shapes.h"
+#include "geometry/tets/generate/surface_io.h"
+#include "geometry/tets/generate/tet_ops.h"
+#include "geometry/tets/generate/tetgen_mesher.h"
+#include "geometry/tets/generate/voxel_image.h"
+#include "base/util/file_error.h"
 #include "test_inr.h"
 #include "test_paths.h"
 

@@ -10,12 +10,12 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/generate/cgal_mesher.h"
-#include "mesh/generate/iso_region.h"
-#include "mesh/generate/shape_mesher.h"
-#include "mesh/generate/shapes.h"
-#include "mesh/generate/tetgen_mesher.h"
-#include "util/file_error.h"
+#include "geometry/tets/generate/cgal_mesher.h"
+#include "geometry/tets/generate/iso_region.h"
+#include "geometry/tets/generate/shape_mesher.h"
+#include "geometry/tets/generate/shapes.h"
+#include "geometry/tets/generate/tetgen_mesher.h"
+#include "base/util/file_error.h"
 #include "test_inr.h"
 #include "test_paths.h"
 

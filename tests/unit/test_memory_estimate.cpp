@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "app/scene_job.h"
-#include "mesh/topology.h"
+#include "geometry/tets/topology.h"
 #include "test_meshes.h"
-#include "volume/render_plan.h"
+#include "render/volume/render_plan.h"
 
 namespace zs {
 namespace {

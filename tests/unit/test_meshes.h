@@ -10,12 +10,12 @@
 
 #include <cmath>
 
-#include "view/camera.h"
-#include "volume/render_settings.h"
-#include "optics/transfer_function.h"
+#include "base/view/camera.h"
+#include "render/volume/render_settings.h"
+#include "base/optics/transfer_function.h"
 
-#include "mesh/hex_split.h"
-#include "mesh/tet_mesh.h"
+#include "geometry/tets/hex_split.h"
+#include "geometry/tets/tet_mesh.h"
 
 namespace zs::test {
 

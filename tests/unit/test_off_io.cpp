@@ -4,11 +4,11 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/io/mesh_io.h"
-#include "mesh/io/off_io.h"
-#include "util/file_error.h"
-#include "mesh/topology.h"
-#include "mesh/validate.h"
+#include "geometry/tets/io/mesh_io.h"
+#include "geometry/tets/io/off_io.h"
+#include "base/util/file_error.h"
+#include "geometry/tets/topology.h"
+#include "geometry/tets/validate.h"
 #include "test_paths.h"
 
 namespace zs {

@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "volume/pixel_lists.h"
+#include "render/volume/pixel_lists.h"
 
 namespace zs {
 namespace {

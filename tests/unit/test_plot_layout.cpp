@@ -8,7 +8,7 @@
 
 #include "bench/line_plot.h"
 #include "bench/plot_layout.h"
-#include "image/image.h"
+#include "output/image_io.h"
 #include "test_paths.h"
 
 namespace zs {

@@ -1,5 +1,5 @@
 // 8-bit outputs hold straight alpha (PNG's definition), both writers alike;
-// reading them back premultiplies again. See image/pixel_quantize.h.
+// reading them back premultiplies again. See output/pixel_quantize.h.
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -8,9 +8,9 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
-#include "image/image.h"
-#include "image/pixel_quantize.h"
-#include "image/tile_writer.h"
+#include "output/image_io.h"
+#include "output/pixel_quantize.h"
+#include "output/tile_writer.h"
 #include "test_paths.h"
 
 namespace zs {

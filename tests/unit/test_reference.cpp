@@ -5,9 +5,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/topology.h"
-#include "reference/boundary_hits.h"
-#include "reference/reference_renderer.h"
+#include "geometry/tets/topology.h"
+#include "render/reference/boundary_hits.h"
+#include "render/reference/reference_renderer.h"
 #include "test_meshes.h"
 
 namespace zs {
@@ -24,7 +24,7 @@ RenderSettings ref_settings(uint32_t W, uint32_t H, Projection proj, TransferFun
 }
 
 Image reference(const TetMesh& m, const RenderSettings& rs, ReferenceStats* st) {
-  return render_reference(m, build_topology(m), rs, st);
+  return render_reference(m, build_topology(m), rs, rs.tf, st);
 }
 
 TEST(Reference, WatertightAtSharedEdgesAndVertices) {

@@ -5,13 +5,13 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/io/mesh_io.h"
-#include "image/image_compare.h"
-#include "mesh/topology.h"
-#include "reference/reference_renderer.h"
+#include "geometry/tets/io/mesh_io.h"
+#include "output/image_compare.h"
+#include "geometry/tets/topology.h"
+#include "render/reference/reference_renderer.h"
 #include "scene/scene.h"
 #include "test_paths.h"
-#include "volume/zsweep_renderer.h"
+#include "render/volume/zsweep_renderer.h"
 
 namespace zs {
 namespace {
@@ -32,7 +32,7 @@ void render_finite(const TetMesh& m, Projection proj, uint64_t min_rendered) {
   EXPECT_GE(st.rendered_pixels, min_rendered);
   EXPECT_EQ(st.faces_clipped, 0u);
   ReferenceStats rst;
-  const Image ref = render_reference(m, topo, rs, &rst);
+  const Image ref = render_reference(m, topo, rs, rs.tf, &rst);
   const ImageDiff d = compare_images(img, ref);
   EXPECT_LE(d.max_abs, 1e-5) << "worst pixel " << d.worst_x << ", " << d.worst_y;
   EXPECT_EQ(rst.lost_walks, 0u);

@@ -1,4 +1,4 @@
-// surface/rgba_store.h: the interleaved RGBA store (a vector path for whole
+// render/surfaces/rgba_store.h: the interleaved RGBA store (a vector path for whole
 // groups of 16 pixels, one pixel at a time for the rest) against its
 // definition, at every batch length up to 64 and with background pixels
 // scattered through the groups.
@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "surface/rgba_store.h"
+#include "render/surfaces/rgba_store.h"
 
 namespace zs {
 namespace {

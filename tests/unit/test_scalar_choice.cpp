@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/io/mesh_io.h"
+#include "geometry/tets/io/mesh_io.h"
 #include "test_paths.h"
-#include "util/file_error.h"
+#include "base/util/file_error.h"
 
 namespace zs {
 namespace {

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "image/image.h"
-#include "mesh/io/off_io.h"
+#include "output/image_io.h"
+#include "geometry/tets/io/off_io.h"
 #include "scene/scene.h"
-#include "optics/transfer_function.h"
+#include "base/optics/transfer_function.h"
 #include "test_paths.h"
 
 namespace zs {
@@ -109,7 +109,7 @@ TEST(ImageIo, ExrIsFloatAndPngIsQuantizedWithoutGamma) {
 }  // namespace
 }  // namespace zs
 
-#include "image/image_compare.h"
+#include "output/image_compare.h"
 
 namespace zs {
 namespace {

@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
-#include "volume/light_kernel.h"
-#include "volume/segment_batch.h"
-#include "volume/segment_integrator.h"
+#include "base/optics/light_kernel.h"
+#include "render/volume/segment_batch.h"
+#include "base/optics/segment_integrator.h"
 
 namespace zs {
 namespace {

@@ -1,4 +1,4 @@
-// The shadow-map module (src/shadows/): the digest's step-edge table, level
+// The shadow-map module (src/lighting/): the digest's step-edge table, level
 // counts of PCF(k, n), the fixed patterns, the bias on tilted receivers.
 #include <cfloat>
 #include <cmath>
@@ -11,10 +11,10 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "shadows/depth_blocks.h"
-#include "shadows/multi_depth.h"
-#include "shadows/tiled_depths.h"
-#include "shadows/shadow_map.h"
+#include "lighting/depth_blocks.h"
+#include "lighting/multi_depth.h"
+#include "lighting/tiled_depths.h"
+#include "lighting/shadow_map.h"
 
 namespace zs {
 namespace {

@@ -1,4 +1,4 @@
-// Ambient occlusion from orthographic sphere maps (shadows/sphere_map.h): an
+// Ambient occlusion from orthographic sphere maps (lighting/sphere_map.h): an
 // isolated sphere is unoccluded, a sphere inside a closed shell is dark, the
 // maps converge to exact visibility as they grow, and threads change nothing.
 #include <algorithm>
@@ -9,10 +9,10 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "shadows/ao_directions.h"
-#include "shadows/sphere_map.h"
-#include "shadows/tiled_depths.h"
-#include "shadows/transmittance_lists.h"
+#include "lighting/ao_directions.h"
+#include "lighting/sphere_map.h"
+#include "lighting/tiled_depths.h"
+#include "lighting/transmittance_lists.h"
 
 namespace zs {
 namespace {

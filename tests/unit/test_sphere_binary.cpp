@@ -1,4 +1,4 @@
-// The binary sphere list .sphb and the sphere writers (src/spheres/).
+// The binary sphere list .sphb and the sphere writers (src/geometry/spheres/).
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -8,13 +8,13 @@
 
 #include <gtest/gtest.h>
 
-#include "spheres/generate/portable_random.h"
-#include "spheres/sphere_binary.h"
-#include "spheres/sphere_io.h"
-#include "spheres/sphere_reader.h"
-#include "spheres/sphere_writer.h"
+#include "geometry/spheres/generate/portable_random.h"
+#include "geometry/spheres/sphere_binary.h"
+#include "geometry/spheres/sphere_io.h"
+#include "geometry/spheres/sphere_reader.h"
+#include "geometry/spheres/sphere_writer.h"
 #include "test_paths.h"
-#include "util/file_error.h"
+#include "base/util/file_error.h"
 
 namespace zs {
 namespace {

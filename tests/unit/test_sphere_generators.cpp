@@ -1,4 +1,4 @@
-// The sphere test sets C1-C4 (src/spheres/generate/).
+// The sphere test sets C1-C4 (src/geometry/spheres/generate/).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -8,9 +8,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "spheres/generate/pore_balls.h"
-#include "spheres/generate/portable_random.h"
-#include "spheres/generate/test_sets.h"
+#include "geometry/spheres/generate/pore_balls.h"
+#include "geometry/spheres/generate/portable_random.h"
+#include "geometry/spheres/generate/test_sets.h"
 
 namespace zs {
 namespace {

@@ -1,4 +1,4 @@
-// The sphere readers: .sph lists and PDB atoms (src/spheres/).
+// The sphere readers: .sph lists and PDB atoms (src/geometry/spheres/).
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -7,11 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "util/file_error.h"
-#include "spheres/pdb_reader.h"
-#include "spheres/sphere_colors.h"
-#include "spheres/sphere_io.h"
-#include "spheres/sphere_reader.h"
+#include "base/util/file_error.h"
+#include "geometry/spheres/pdb_reader.h"
+#include "geometry/spheres/sphere_colors.h"
+#include "geometry/spheres/sphere_io.h"
+#include "geometry/spheres/sphere_reader.h"
 #include "test_paths.h"
 
 namespace zs {

@@ -1,4 +1,4 @@
-// The Embree sphere reference (src/reference/sphere_reference.h) against
+// The Embree sphere reference (src/render/reference/sphere_reference.h) against
 // closed forms computed here independently, in long double, for both
 // projections.
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
-#include "reference/sphere_reference.h"
+#include "render/reference/sphere_reference.h"
 
 namespace zs {
 namespace {

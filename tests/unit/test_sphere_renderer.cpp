@@ -10,10 +10,10 @@
 #include <glm/geometric.hpp>
 
 #include "raster/image_sink.h"
-#include "spheres/sphere_colors.h"
-#include "sprites/occlusion_map.h"
-#include "sprites/sphere_renderer.h"
-#include "sprites/sphere_visibility.h"
+#include "geometry/spheres/sphere_colors.h"
+#include "lighting/occlusion_map.h"
+#include "render/spheres/sphere_renderer.h"
+#include "render/spheres/sphere_visibility.h"
 
 namespace zs {
 namespace {

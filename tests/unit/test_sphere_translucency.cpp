@@ -1,4 +1,4 @@
-// Translucent sphere modes (sprites/translucent_tile.h) against closed-form
+// Translucent sphere modes (render/spheres/translucent_tile.h) against closed-form
 // composites of shells, each other and the Embree reference; the digest's
 // error bound (Eq. 4.2) and its worked example; weighted sum's failure;
 // tiles, threads and culling never change a bit.
@@ -10,10 +10,10 @@
 #include <stdexcept>
 
 #include "raster/image_sink.h"
-#include "reference/sphere_reference.h"
-#include "sprites/fragment_composite.h"
-#include "sprites/sphere_renderer.h"
-#include "sprites/translucent_tile.h"
+#include "render/reference/sphere_reference.h"
+#include "render/spheres/fragment_composite.h"
+#include "render/spheres/sphere_renderer.h"
+#include "render/spheres/translucent_tile.h"
 
 namespace zs {
 namespace {

@@ -7,15 +7,15 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "image/image_compare.h"
-#include "mesh/default_mesh.h"
-#include "mesh/io/mesh_io.h"
+#include "output/image_compare.h"
+#include "geometry/tets/default_mesh.h"
+#include "geometry/tets/io/mesh_io.h"
 #include "scene/scene.h"
 #include "test_paths.h"
-#include "mesh/topology.h"
-#include "reference/reference_renderer.h"
+#include "geometry/tets/topology.h"
+#include "render/reference/reference_renderer.h"
 #include "test_meshes.h"
-#include "volume/zsweep_renderer.h"
+#include "render/volume/zsweep_renderer.h"
 
 namespace zs {
 namespace {
@@ -35,7 +35,7 @@ Both render_both(const TetMesh& m, const RenderSettings& rs) {
   const Topology topo = build_topology(m);
   Both b;
   b.z = render_zsweep(m, topo, rs, &b.zs);
-  b.ref = render_reference(m, topo, rs, &b.rs);
+  b.ref = render_reference(m, topo, rs, rs.tf, &b.rs);
   return b;
 }
 
@@ -393,7 +393,7 @@ void huge_spx(const std::string& path, uint32_t size) {
     SampledRows sink;
     for (uint32_t k = 1; k < 24; ++k) sink.rows.push_back(uint32_t(uint64_t(size) * k / 24) + k % 3);
     ReferenceStats rst;
-    sink.ref = render_reference_rows(m, topo, rs, sink.rows, &rst);
+    sink.ref = render_reference_rows(m, topo, rs, rs.tf, sink.rows, &rst);
     RenderStats st;
     render_zsweep_tiles(m, topo, rs, sink, 0, &st);
     EXPECT_EQ(sink.compared_pixels, uint64_t(sink.rows.size()) * size) << size;

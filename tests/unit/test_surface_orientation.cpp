@@ -14,9 +14,9 @@
 #include <gtest/gtest.h>
 
 #include "app/scene_job.h"
-#include "surfaces/closed_solids.h"
-#include "surfaces/ground_height.h"
-#include "surfaces/triangle_projection.h"
+#include "geometry/triangles/closed_solids.h"
+#include "geometry/triangles/ground_height.h"
+#include "lighting/triangle_projection.h"
 
 namespace zs {
 namespace {

@@ -10,9 +10,9 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/generate/surface_io.h"
-#include "mesh/generate/surface_precheck.h"
-#include "util/file_error.h"
+#include "geometry/tets/generate/surface_io.h"
+#include "geometry/tets/generate/surface_precheck.h"
+#include "base/util/file_error.h"
 #include "test_paths.h"
 
 namespace zs {

@@ -1,7 +1,8 @@
-// Triangle surfaces and the surface renderer (src/surfaces/, src/surface/):
+// Triangle surfaces and the surface renderer (src/geometry/triangles/, src/render/surfaces/):
 // readers, culling counts, z-buffer depth against closed-form ray–triangle
 // hits, near clipping, analytic shadows (map and exact), and bit-identical
 // images for any thread and tile count.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -15,12 +16,12 @@
 #include "raster/image_sink.h"
 #include "raster/triangle_bins.h"
 #include "raster/zbuffer_tile.h"
-#include "shadows/shadow_map.h"
-#include "surface/surface_renderer.h"
-#include "surfaces/io/surface_reader.h"
-#include "surfaces/triangle_projection.h"
+#include "lighting/shadow_map.h"
+#include "render/surfaces/surface_renderer.h"
+#include "geometry/triangles/io/surface_reader.h"
+#include "lighting/triangle_projection.h"
 #include "test_paths.h"
-#include "util/file_error.h"
+#include "base/util/file_error.h"
 
 namespace zs {
 namespace {
@@ -496,7 +497,8 @@ TEST(Surfaces, RgbaOnlyTilesHoldTheSameColours) {
   std::vector<float> rgba[2];
   for (int only = 0; only < 2; ++only) {
     SurfaceRenderSettings s = settings_for(cam, 100, 77, 2);
-    s.background = {0.1, 0.2, 0.3, 0.5};
+    const double bg[4] = {0.1, 0.2, 0.3, 0.5};
+    std::copy(bg, bg + 4, s.background);
     s.lights = {Light{}};
     s.shadows.map_size = 256;
     s.depth_and_lit = only == 0;

@@ -12,8 +12,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "util/atomic_file.h"
-#include "util/temp_registry.h"
+#include "base/util/atomic_file.h"
+#include "base/util/temp_registry.h"
 #include "test_paths.h"
 
 namespace zs {

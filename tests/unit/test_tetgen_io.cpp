@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/io/mesh_io.h"
-#include "mesh/io/tetgen_io.h"
-#include "util/file_error.h"
+#include "geometry/tets/io/mesh_io.h"
+#include "geometry/tets/io/tetgen_io.h"
+#include "base/util/file_error.h"
 #include "test_paths.h"
 
 namespace fs = std::filesystem;

@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
-#include "image/image.h"
-#include "image/tile_writer.h"
+#include "output/image_io.h"
+#include "output/tile_writer.h"
 #include "test_paths.h"
 
 namespace zs {

@@ -7,10 +7,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "mesh/default_mesh.h"
-#include "mesh/hex_split.h"
-#include "mesh/topology.h"
-#include "mesh/validate.h"
+#include "geometry/tets/default_mesh.h"
+#include "geometry/tets/hex_split.h"
+#include "geometry/tets/topology.h"
+#include "geometry/tets/validate.h"
 
 namespace zs {
 namespace {

@@ -1,5 +1,5 @@
-// The surface renderer's per-triangle set-up (surface/triangle_shade.h) and
-// the batch kernel that evaluates it (surface/shade_batch.h), against the
+// The surface renderer's per-triangle set-up (render/surfaces/triangle_shade.h) and
+// the batch kernel that evaluates it (render/surfaces/shade_batch.h), against the
 // closed form computed from scratch per pixel: the ray's hit with the
 // triangle (Möller–Trumbore), its view depth, the barycentric (Phong)
 // normal and the face normal, both turned to the eye.
@@ -9,8 +9,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "surface/shade_batch.h"
-#include "surface/triangle_shade.h"
+#include "render/surfaces/shade_batch.h"
+#include "render/surfaces/triangle_shade.h"
 
 namespace zs {
 namespace {

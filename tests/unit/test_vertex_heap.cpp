@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "volume/vertex_heap.h"
+#include "render/volume/vertex_heap.h"
 
 namespace zs {
 namespace {

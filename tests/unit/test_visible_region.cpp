@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "surfaces/visible_region.h"
+#include "lighting/visible_region.h"
 
 namespace zs {
 namespace {

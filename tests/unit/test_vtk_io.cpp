@@ -1,4 +1,4 @@
-// VTK-backed readers/writer (src/mesh/io/vtk_*.cpp, plot3d_reader.cpp):
+// VTK-backed readers/writer (src/geometry/tets/io/vtk_*.cpp, plot3d_reader.cpp):
 // small synthetic files for exact behaviour, shared datasets for real counts.
 #include <gtest/gtest.h>
 
@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "mesh/io/vtk_io.h"
-#include "mesh/topology.h"
-#include "mesh/validate.h"
-#include "util/file_error.h"
-#include "mesh/tet_mesh.h"
+#include "geometry/tets/io/vtk_io.h"
+#include "geometry/tets/topology.h"
+#include "geometry/tets/validate.h"
+#include "base/util/file_error.h"
+#include "geometry/tets/tet_mesh.h"
 #include "test_paths.h"
 
 namespace {

@@ -4,9 +4,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "mesh/topology.h"
+#include "geometry/tets/topology.h"
 #include "test_meshes.h"
-#include "volume/zsweep_renderer.h"
+#include "render/volume/zsweep_renderer.h"
 
 namespace zs {
 namespace {

@@ -1,0 +1,47 @@
+#include "geometry/spheres/sphere_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "geometry/spheres/pdb_reader.h"
+#include "geometry/spheres/sphere_binary.h"
+#include "geometry/spheres/sphere_reader.h"
+#include "geometry/spheres/sphere_writer.h"
+#include "base/util/file_error.h"
+
+namespace zs {
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+}  // namespace
+
+bool is_sphere_file(const std::string& path) {
+  const std::string e = lower_extension(path);
+  return e == ".pdb" || e == ".ent" || e == ".sph" || e == ".sphb";
+}
+
+SphereSet read_sphere_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw FileError(path, "no such file");
+  const std::string e = lower_extension(path);
+  if (e == ".sph") return read_spheres(path);
+  if (e == ".sphb") return read_spheres_binary(path);
+  if (e == ".pdb" || e == ".ent") return read_pdb(path);
+  throw FileError(path, "unknown sphere format (expected .pdb, .ent, .sph or .sphb)");
+}
+
+void write_spheres(const std::string& path, const SphereSet& s) {
+  const std::string e = lower_extension(path);
+  if (e == ".sph") return write_spheres_text(path, s);
+  if (e == ".sphb") return write_spheres_binary(path, s);
+  throw FileError(path, "unknown sphere output format (expected .sph or .sphb)");
+}
+
+}  // namespace zs

@@ -1,0 +1,30 @@
+// Format dispatch: read or write a tet mesh by file name.
+//   .off             classic tet OFF (off_io.h, hand-written)
+//   .vtu .vtk        VTK XML / legacy (vtk_io.h, via VTK readers)
+//   *xyz.bin + q     PLOT3D (plot3d_io.h, via VTK's PLOT3D reader)
+//   .node / .ele     TetGen (tetgen_io.h, via the TetGen library)
+// Every failure is a zs::FileError whose message names the file.
+#pragma once
+
+#include <string>
+
+#include "geometry/tets/tet_mesh.h"
+
+namespace zs {
+
+struct ReadOptions {
+  std::string scalar;  // point array (or PLOT3D function) to use; "" = default
+  std::string q_path;  // PLOT3D solution file; required for PLOT3D grids
+};
+
+enum class MeshFormat { Off, Vtu, VtkLegacy, Plot3d, TetGen, Unknown };
+
+MeshFormat format_of(const std::string& path, const ReadOptions& opt = {});
+
+TetMesh read_mesh(const std::string& path, const ReadOptions& opt = {});
+
+// Writes to a temporary name beside `path`, renames on success, so a failed
+// write never leaves a partial file behind.
+void write_mesh(const std::string& path, const TetMesh& m);
+
+}  // namespace zs

@@ -1,8 +1,0 @@
-#include "shadows/shadow_settings.h"
-
-namespace zs {
-
-const char* to_string(DepthSelect s) { return s == DepthSelect::Max ? "max" : "min"; }
-const char* to_string(ShadowMode m) { return m == ShadowMode::Map ? "map" : "exact"; }
-
-}  // namespace zs
