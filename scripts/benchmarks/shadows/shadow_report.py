@@ -1,4 +1,4 @@
-"""Charts and summary.md of scripts/bench-shadows."""
+"""Charts and summary.md of scripts/bench shadows."""
 import datetime
 import math
 import os
@@ -11,7 +11,9 @@ PAIRS = [("3-SM+PCF4", "1-SM+PCF9"), ("2-SM(max)+PCF9", "1-SM+PCF16"), ("3-SM+PC
 Q_R = (9, 5)  # the thesis's q (3×3 neighbourhood) and r = 9 − 4
 
 
-def fmt(x, nd=1):
+def cell(x, nd=1):
+    """A table cell as this summary writes it: floats with nd decimals, no
+    thousands separators; "–" for no value."""
     if x is None or x == "":
         return "–"
     if isinstance(x, float):
@@ -21,7 +23,7 @@ def fmt(x, nd=1):
 
 def table(head, rows):
     out = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
-    out += ["| " + " | ".join(fmt(c) for c in r) + " |" for r in rows]
+    out += ["| " + " | ".join(cell(c) for c in r) + " |" for r in rows]
     return out
 
 

@@ -1,24 +1,17 @@
-"""`scripts/bench-spheres --translucent`'s summary per set, its Markdown
+"""`scripts/bench spheres --translucent`'s summary per set, its Markdown
 tables (translucent-results.md; with --doc the block between the
 bench-spheres-translucent markers of docs/spheres-bench.md) and its plots
 (translucent-errors-SET.png: time vs RMSE against sorted exact;
 translucent-modes.png: the Table 5 analogue's times). The runs are
-bench_spheres_translucent.py's."""
+translucent.py's."""
 import datetime
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import bench_spheres as bs  # noqa: E402
-from bench_common import cpu_name, cpu_vector_isa, replace_block  # noqa: E402
-from bench_spheres_translucent import FLOOR, ROOT, TABLE5  # noqa: E402
+from ..lib.common import ROOT, cpu_name, cpu_vector_isa, fmt, isnum, replace_block
+from .translucent_runs import FLOOR, TABLE5
 
 DOC_NAME = "bench-spheres-translucent"
 DOC_HEADING = "## Translucency (`--translucent`)"
-
-
-def isnum(x):
-    return isinstance(x, (int, float)) and not isinstance(x, bool) and x == x
 
 
 def mean_of(rows, label, k="ms"):
@@ -76,21 +69,14 @@ def summarize(name, count, size, mode_rows, err_rows, astats, vtk_rows, emb, bud
     return s
 
 
-def fmt(x, d=1):
-    if isinstance(x, float) and x != x:  # nan: not measured (a timeout)
-        return "–"
-    return bs.fmt(x, d) if isnum(x) else ("–" if x in (None, "") else str(x))
-
-
 def ok_mark(x):
     return {"yes": "yes", "no": "**no**"}.get(x, x or "–")
 
 
 def doc_lines(a, summary, mode_rows, err_rows, vtk_rows, emb_rows, size, cams, wall, pngs):
-    cmd = "scripts/bench-spheres " + " ".join(sys.argv[1:])
     nfr = len(cams)
     L = [f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores, {cpu_vector_isa()}), "
-         f"`{cmd.strip()}` ({wall / 60:.1f} min): {size}², perspective, zsweep reference's automatic camera"
+         f"`{a.command}` ({wall / 60:.1f} min): {size}², perspective, zsweep reference's automatic camera"
          + (f" and {nfr - 1} orbit frames (Table 5 rows: means over the {nfr} frames)" if nfr > 1 else "") +
          f", one thread, `render --frames {a.repeat or 1}`, memory budget {a.memory_budget:g} MiB, "
          f"render timeout {a.render_timeout:g} s"
@@ -261,12 +247,3 @@ def plots(summary, mode_rows, err_rows, vtk_rows, emb_rows, outdir):
 def write_doc_block(lines):
     replace_block(os.path.join(ROOT, "docs", "spheres-bench.md"), DOC_NAME, lines, DOC_HEADING,
                   "scripts/bench-spheres --translucent")
-
-
-def all_cols(rows):
-    cols = []
-    for r in rows:
-        for k in r:
-            if k not in cols:
-                cols.append(k)
-    return [{k: r.get(k, "") for k in cols} for r in rows]
