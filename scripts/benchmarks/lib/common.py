@@ -4,10 +4,12 @@ rows, table cells, the table between <!-- NAME:begin ... --> and
 <!-- NAME:end --> markers of a Markdown file in docs/ (appended under
 `heading` when the markers are missing), and copying plots into docs/bench."""
 import csv
+import json
 import os
 import shutil
 import subprocess
 import sys
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 SCRIPTS = os.path.join(ROOT, "scripts")
@@ -17,6 +19,26 @@ SHARED = os.environ.get("ZSWEEP_SHARED", os.path.join(ROOT, "..", "shared", "dat
 
 def run(cmd, **kw):
     return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw)
+
+
+def run_stats(cmd, stats, timeout, err_chars=200):
+    """Runs `cmd` (a zsweep process that writes --stats `stats`) under
+    `timeout` s: (row, stats). row: exit_status (the exit code, or "timeout
+    after T s"), process_s, and on failure error (its last stderr line,
+    cut to err_chars); stats: the JSON, or None when it failed."""
+    t0 = time.perf_counter()
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return {"exit_status": f"timeout after {timeout:g} s"}, None
+    row = {"exit_status": p.returncode, "process_s": round(time.perf_counter() - t0, 3)}
+    if p.returncode != 0:
+        err = p.stderr.strip().splitlines()
+        row["error"] = err[-1][:err_chars] if err else ""
+        sys.stderr.write(f"zsweep failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}\n")
+        return row, None
+    with open(stats) as f:
+        return row, json.load(f)
 
 
 def worker_env(**extra):

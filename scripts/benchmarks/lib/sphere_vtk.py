@@ -22,19 +22,16 @@ from .common import peak_rss_mb, worker_env
 from .sphere_sets import read_sphb
 
 
-def vtk_worker(path, size, repeat, translucent=False):
-    """Reads cameras (one JSON line each) on stdin, renders the set with
-    vtkOpenGLSphereMapper, answers one JSON line per camera."""
+def sphere_polydata(xyz, r):
+    """The spheres as VTK polydata for vtkOpenGLSphereMapper: points, one
+    vertex cell per sphere (the mapper draws cells; points alone draw
+    nothing) and the radii as the array "radius" (its scale array)."""
     import vtk
     from vtk.util import numpy_support as ns
-    vtk.vtkObject.GlobalWarningDisplayOff()
-    t0 = time.perf_counter()
-    xyz, r, rgba = read_sphb(path)
     pts = vtk.vtkPoints()
     pts.SetData(ns.numpy_to_vtk(np.ascontiguousarray(xyz, dtype=np.float32), deep=True))
     pd = vtk.vtkPolyData()
     pd.SetPoints(pts)
-    # One vertex cell per sphere: the mapper draws cells (points alone draw nothing).
     n = len(r)
     verts = vtk.vtkCellArray()
     verts.SetData(ns.numpy_to_vtkIdTypeArray(np.arange(n + 1, dtype=np.int64), deep=True),
@@ -43,20 +40,54 @@ def vtk_worker(path, size, repeat, translucent=False):
     rad = ns.numpy_to_vtk(np.ascontiguousarray(r, dtype=np.float32), deep=True)
     rad.SetName("radius")
     pd.GetPointData().AddArray(rad)
-    if rgba is not None:
-        col = ns.numpy_to_vtk(np.ascontiguousarray(rgba), deep=True, array_type=vtk.VTK_UNSIGNED_CHAR)
-        col.SetName("rgba")
-        pd.GetPointData().SetScalars(col)
-    del xyz, r, rgba
+    return pd
+
+
+def sphere_renderer(pd, colours):
+    """A renderer (black background) with the spheres of `pd` drawn by
+    vtkOpenGLSphereMapper; colours: the point scalars are the colours (else
+    the actor's own colour). (actor, renderer)."""
+    import vtk
     mapper = vtk.vtkOpenGLSphereMapper()
     mapper.SetInputData(pd)
     mapper.SetScaleArray("radius")
-    mapper.SetColorModeToDirectScalars()
+    if colours:
+        mapper.SetColorModeToDirectScalars()
+    else:
+        mapper.ScalarVisibilityOff()
     actor = vtk.vtkActor()
     actor.SetMapper(mapper)
     ren = vtk.vtkRenderer()
     ren.AddActor(actor)
     ren.SetBackground(0, 0, 0)
+    return actor, ren
+
+
+def set_camera(ren, c):
+    """Our perspective camera `c` (eye, target, up, fov_y) on `ren`."""
+    cam = ren.GetActiveCamera()
+    cam.SetPosition(*c["eye"])
+    cam.SetFocalPoint(*c["target"])
+    cam.SetViewUp(*c["up"])
+    cam.SetViewAngle(c["fov_y"])
+    ren.ResetCameraClippingRange()
+
+
+def vtk_worker(path, size, repeat, translucent=False):
+    """Reads cameras (one JSON line each) on stdin, renders the set with
+    vtkOpenGLSphereMapper, answers one JSON line per camera."""
+    import vtk
+    from vtk.util import numpy_support as ns
+    vtk.vtkObject.GlobalWarningDisplayOff()
+    t0 = time.perf_counter()
+    xyz, r, rgba = read_sphb(path)
+    pd = sphere_polydata(xyz, r)
+    if rgba is not None:
+        col = ns.numpy_to_vtk(np.ascontiguousarray(rgba), deep=True, array_type=vtk.VTK_UNSIGNED_CHAR)
+        col.SetName("rgba")
+        pd.GetPointData().SetScalars(col)
+    del xyz, r, rgba
+    actor, ren = sphere_renderer(pd, colours=True)
     win = vtk.vtkRenderWindow()
     win.SetOffScreenRendering(1)
     if translucent:
@@ -70,19 +101,11 @@ def vtk_worker(path, size, repeat, translucent=False):
     load_s = time.perf_counter() - t0
     # On stderr too, so a frame that times out still tells its load time apart.
     print(f"vtk worker: loaded in {load_s:.1f} s", file=sys.stderr, flush=True)
-    cam = ren.GetActiveCamera()
-
-    def set_camera(c):
-        cam.SetPosition(*c["eye"])
-        cam.SetFocalPoint(*c["target"])
-        cam.SetViewUp(*c["up"])
-        cam.SetViewAngle(c["fov_y"])
-        ren.ResetCameraClippingRange()
 
     first = True
     for line in sys.stdin:
         c = json.loads(line)
-        set_camera(c)
+        set_camera(ren, c)
         out = {}
         if first:  # shaders, VBO upload
             t = time.perf_counter()

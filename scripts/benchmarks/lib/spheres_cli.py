@@ -6,6 +6,7 @@ import argparse
 import os
 
 from .common import ROOT
+from .sphere_sets import FULL
 
 
 def parser():
@@ -109,3 +110,19 @@ def parse(argv):
         a.sets = a.sets or "c1,c2,c3,c4"
     a.command = ("scripts/bench-spheres " + " ".join(argv)).strip()
     return a, ap
+
+
+def sets_and_counts(a, ap, quick):
+    """--sets, checked, and their sphere counts: --counts, else `quick`'s
+    with --quick, else the full sets'."""
+    sets = a.sets.split(",")
+    for s in sets:
+        if s not in FULL:
+            ap.error(f"unknown set {s} (c1, c2, c3, c4)")
+    if a.counts:
+        counts = [int(float(c)) for c in a.counts.split(",")]
+        if len(counts) != len(sets):
+            ap.error("--counts needs one count per set")
+    else:
+        counts = [(quick if a.quick else FULL)[s] for s in sets]
+    return sets, counts

@@ -29,9 +29,9 @@ import sys
 import time
 
 from ..lib.common import ROOT, ZSWEEP, all_cols, copy_to_docs, fmt, replace_block, write_csv
-from ..lib.sphere_sets import FULL, QUICK, auto_camera, bounds, compare, ensure_set, orbit, scene
+from ..lib.sphere_sets import QUICK, auto_camera, bounds, compare, ensure_set, orbit, scene
 from ..lib.sphere_vtk import VtkProcess, vtk_worker
-from ..lib.spheres_cli import parse
+from ..lib.spheres_cli import parse, sets_and_counts
 from .orbit_report import doc_lines, plots, replot, summarize
 
 
@@ -96,16 +96,7 @@ def main(argv):
     size = a.size or (256 if a.quick else 1024)
     nframes = a.frames or (3 if a.quick else 4)
     repeat = a.repeat or 1
-    sets = a.sets.split(",")
-    for s in sets:
-        if s not in FULL:
-            ap.error(f"unknown set {s} (c1, c2, c3, c4)")
-    if a.counts:
-        counts = [int(float(c)) for c in a.counts.split(",")]
-        if len(counts) != len(sets):
-            ap.error("--counts needs one count per set")
-    else:
-        counts = [(QUICK if a.quick else FULL)[s] for s in sets]
+    sets, counts = sets_and_counts(a, ap, QUICK)
     threads = sorted({1} | {int(t) for t in (a.threads or ("1" if a.quick else "1,2")).split(",")})
     os.makedirs(a.out, exist_ok=True)
     img = os.path.join(a.out, "images")

@@ -7,12 +7,11 @@ import datetime
 import os
 
 from ..lib.common import copy_to_docs, cpu_name, cpu_vector_isa, fmt, isnum, read_csv
+from ..lib.plots import pyplot, save, set_bars
 
 
 def plots(rows, summary, outdir, prefix):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     files = []
     for s in summary:
         name = s["set"]
@@ -38,32 +37,13 @@ def plots(rows, summary, outdir, prefix):
         ax.set_title(f"{name.upper()} ({s['spheres']:,} spheres), {s['size']}²", fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
-        fig.tight_layout()
-        f = os.path.join(outdir, f"{prefix}{name}.png")
-        fig.savefig(f)
-        plt.close(fig)
-        files.append(f)
+        files.append(save(fig, os.path.join(outdir, f"{prefix}{name}.png")))
     fig, ax = plt.subplots(figsize=(6, 3.4), dpi=80)
     keys = [("basic_ms", "basic, 1 thread"), ("optimized_ms", "optimized, 1 thread"),
             ("optimized_2t_ms", "optimized, 2 threads"), ("vtk_ms", "VTK sphere mapper, 1 thread"),
             ("embree_trace_ms", "Embree trace, 1 thread (auto camera)")]
-    keys = [k for k in keys if any(isnum(s.get(k[0])) for s in summary)]
-    wbar = 0.8 / max(len(keys), 1)
-    for i, (k, label) in enumerate(keys):
-        ys = [s.get(k) if s.get(k) is not None else float("nan") for s in summary]
-        ax.bar([j + i * wbar for j in range(len(summary))], ys, wbar, label=label)
-    ax.set_xticks([j + 0.4 - wbar / 2 for j in range(len(summary))])
-    ax.set_xticklabels([f"{s['set'].upper()}\n{s['spheres']:,}" for s in summary], fontsize=8)
-    ax.set_yscale("log")
-    ax.set_ylabel("mean ms per frame over the orbit")
-    ax.grid(True, axis="y", which="both", alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    f = os.path.join(outdir, f"{prefix}mean.png")
-    fig.savefig(f)
-    plt.close(fig)
-    files.append(f)
-    return files
+    set_bars(ax, summary, keys, 0.8, "mean ms per frame over the orbit", fontsize=7)
+    return files + [save(fig, os.path.join(outdir, f"{prefix}mean.png"))]
 
 
 def replot(d, doc):

@@ -7,25 +7,20 @@ import os
 import numpy as np
 
 from ..lib.common import isnum
+from ..lib.plots import pyplot, save
 
 
 def save_bars(fig, ax, ylabel, path):
     """A bar chart's log axis, grid and legend, saved to `path` (returned)."""
-    import matplotlib.pyplot as plt
     ax.set_yscale("log")
     ax.set_ylabel(ylabel, fontsize=8)
     ax.grid(True, axis="y", which="both", alpha=0.3)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    return save(fig, path)
 
 
 def plots(results, tables, c, a, outdir):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     files = []
     sets = [r for r in results if r["grid"]]
     if not sets:
@@ -102,10 +97,7 @@ def plots(results, tables, c, a, outdir):
         ax.legend(fontsize=6)
     for ax in list(axs.flat)[len(sets):]:
         ax.axis("off")
-    fig.tight_layout()
-    files.append(os.path.join(outdir, "ao-error-map.png"))
-    fig.savefig(files[-1])
-    plt.close(fig)
+    files.append(save(fig, os.path.join(outdir, "ao-error-map.png")))
 
     # Table 7: the maps' time per direction count; Table 6: Phong against AO.
     t7 = tables.get("ao-table7.csv") or []
@@ -132,9 +124,7 @@ def plots(results, tables, c, a, outdir):
 
 def compare_png(path, panels, name):
     """AO images side by side (grey: 0 black, 1 white; off the spheres blue)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     panels = [(t, im) for t, im in panels if im is not None]
     if not panels:
         return None
@@ -146,7 +136,4 @@ def compare_png(path, panels, name):
         ax.set_title(t, fontsize=7)
         ax.axis("off")
     fig.suptitle(f"{name.upper()}: AO", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-    return path
+    return save(fig, path)

@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-from ..lib.common import ZSWEEP
+from ..lib.common import ZSWEEP, run_stats
 from ..lib.sphere_sets import FULL, bounds, read_sphb, scene
 
 QUICK = {"c1": 3000, "c2": 3000, "c3": 3000, "c4": 3375}
@@ -100,19 +100,9 @@ def render(scene_path, out, R, budget, timeout):
             os.remove(f)
     cmd = [ZSWEEP, "render", scene_path, "-o", out, "--threads", "1", "--frames", str(R), "--stats", stats,
            "--memory-budget", str(budget), "--compression", "none"]
-    t0 = time.perf_counter()
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return {"exit_status": f"timeout after {timeout:g} s"}
-    row = {"exit_status": p.returncode, "process_s": round(time.perf_counter() - t0, 3)}
-    if p.returncode != 0:
-        err = p.stderr.strip().splitlines()
-        row["error"] = err[-1][:300] if err else ""
-        sys.stderr.write(f"zsweep failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}\n")
+    row, j = run_stats(cmd, stats, timeout, err_chars=300)
+    if j is None:
         return row
-    with open(stats) as f:
-        j = json.load(f)
     t, ao = j["time_ms"], j.get("ao", {})
     row.update({"ms": t["total"], "setup_ms": t.get("setup"), "maps_ms": t.get("ao_maps"),
                 "map_mb": round(ao.get("map_bytes", 0) / 2**20, 2) if ao.get("directions") else "",

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..lib.common import peak_rss_mb
 from ..lib.sphere_sets import read_sphb
+from ..lib.sphere_vtk import set_camera, sphere_polydata, sphere_renderer
 
 
 def ssao_worker(arg):
@@ -27,32 +28,14 @@ def ssao_worker(arg):
     ok = np.isfinite(r) & (r > 0) & np.isfinite(xyz).all(axis=1)
     xyz, r = np.ascontiguousarray(xyz[ok], np.float32), np.ascontiguousarray(r[ok], np.float32)
     n = len(r)
-    pts = vtk.vtkPoints()
-    pts.SetData(ns.numpy_to_vtk(xyz, deep=True))
-    pd = vtk.vtkPolyData()
-    pd.SetPoints(pts)
-    verts = vtk.vtkCellArray()
-    verts.SetData(ns.numpy_to_vtkIdTypeArray(np.arange(n + 1, dtype=np.int64), deep=True),
-                  ns.numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True))
-    pd.SetVerts(verts)
-    rad = ns.numpy_to_vtk(r, deep=True)
-    rad.SetName("radius")
-    pd.GetPointData().AddArray(rad)
+    pd = sphere_polydata(xyz, r)
     del xyz, r
-    mapper = vtk.vtkOpenGLSphereMapper()
-    mapper.SetInputData(pd)
-    mapper.SetScaleArray("radius")
-    mapper.ScalarVisibilityOff()
-    actor = vtk.vtkActor()
-    actor.SetMapper(mapper)
+    actor, ren = sphere_renderer(pd, colours=False)
     prop = actor.GetProperty()
     prop.SetColor(1, 1, 1)
     prop.SetAmbient(1)
     prop.SetDiffuse(0)
     prop.SetSpecular(0)
-    ren = vtk.vtkRenderer()
-    ren.AddActor(actor)
-    ren.SetBackground(0, 0, 0)
     ssao = vtk.vtkSSAOPass()
     ssao.SetDelegatePass(vtk.vtkRenderStepsPass())
     ssao.SetBias(p["bias"])
@@ -65,12 +48,7 @@ def ssao_worker(arg):
     win.AddRenderer(ren)
     W = H = p["size"]
     win.SetSize(W, H)
-    c, cam = p["camera"], ren.GetActiveCamera()
-    cam.SetPosition(*c["eye"])
-    cam.SetFocalPoint(*c["target"])
-    cam.SetViewUp(*c["up"])
-    cam.SetViewAngle(c["fov_y"])
-    ren.ResetCameraClippingRange()
+    set_camera(ren, p["camera"])
     load_s = time.perf_counter() - t0
     out = []
     for k, radius in enumerate(p["radii"]):

@@ -35,9 +35,9 @@ import sys
 import time
 
 from ..lib.common import all_cols, copy_to_docs, read_csv, write_csv
-from ..lib.sphere_sets import FULL, auto_camera, bounds, compare, ensure_set, orbit, scene
+from ..lib.sphere_sets import auto_camera, bounds, compare, ensure_set, orbit, scene
 from ..lib.sphere_vtk import VtkProcess
-from ..lib.spheres_cli import parse
+from ..lib.spheres_cli import parse, sets_and_counts
 from .translucent_runs import (QUICK, TABLE5, alpha_stats, bound_row, compare_images, exact_timeout, key, render,
                                run_reference, skipped_by, sweep_variants, tag, variant)
 from .translucent_tables import doc_lines, plots, summarize, write_doc_block
@@ -221,16 +221,7 @@ def main(argv):
         return replot(a.replot, a.doc)
     size = a.size or (256 if a.quick else 1024)
     nframes = a.frames or 1
-    sets = a.sets.split(",")
-    for s in sets:
-        if s not in FULL:
-            ap.error(f"unknown set {s} (c1, c2, c3, c4)")
-    if a.counts:
-        counts = [int(float(c)) for c in a.counts.split(",")]
-        if len(counts) != len(sets):
-            ap.error("--counts needs one count per set")
-    else:
-        counts = [(QUICK if a.quick else FULL)[s] for s in sets]
+    sets, counts = sets_and_counts(a, ap, QUICK)
     if a.threads and a.threads != "1":
         print("bench-spheres --translucent: one thread only (--threads ignored)", file=sys.stderr)
     os.makedirs(a.out, exist_ok=True)

@@ -8,11 +8,10 @@ import os
 import struct
 import subprocess
 import sys
-import time
 
 import numpy as np
 
-from ..lib.common import ZSWEEP
+from ..lib.common import ZSWEEP, run_stats
 from ..lib.sphere_sets import QUICK as SETS_QUICK
 
 EPS = 2e-6        # float rounding between two exact composites (dual_peel to completion: <= 1e-6)
@@ -129,19 +128,11 @@ def render(scene_path, out, budget, repeat, timeout):
         os.remove(stats)
     cmd = [ZSWEEP, "render", scene_path, "-o", out, "--threads", "1", "--frames", str(repeat),
            "--stats", stats, "--memory-budget", str(budget), "--compression", "none"]
-    t0 = time.perf_counter()
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return {"exit_status": f"timeout after {timeout:g} s", "timeout": True}
-    row = {"exit_status": p.returncode, "process_s": round(time.perf_counter() - t0, 3)}
-    if p.returncode != 0:
-        err = p.stderr.strip().splitlines()
-        row["error"] = err[-1][:200] if err else ""
-        sys.stderr.write(f"zsweep failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}\n")
+    row, j = run_stats(cmd, stats, timeout)
+    if "process_s" not in row:  # timed out
+        return dict(row, timeout=True)
+    if j is None:
         return row
-    with open(stats) as f:
-        j = json.load(f)
     tr = j.get("translucency", {})
     row.update({"ms": j["time_ms"]["total"], "setup_ms": j["time_ms"].get("setup"),
                 "peak_rss_mb": round(j.get("peak_rss_bytes", 0) / 2**20, 1),

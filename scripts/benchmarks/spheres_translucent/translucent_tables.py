@@ -8,6 +8,7 @@ import datetime
 import os
 
 from ..lib.common import ROOT, cpu_name, cpu_vector_isa, fmt, isnum, replace_block
+from ..lib.plots import pyplot, save, set_bars
 from .translucent_runs import FLOOR, TABLE5
 
 DOC_NAME = "bench-spheres-translucent"
@@ -184,10 +185,8 @@ def doc_lines(a, summary, mode_rows, err_rows, vtk_rows, emb_rows, size, cams, w
 
 
 def plots(summary, mode_rows, err_rows, vtk_rows, emb_rows, outdir):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import matplotlib.ticker  # noqa: F401
+    plt = pyplot()
+    import matplotlib.ticker
     files = []
     styles = {"sorted": ("o", "C0"), "peel": ("s", "C1"), "dual_peel": ("^", "C2"), "weighted": ("D", "C3")}
     for s in summary:
@@ -218,30 +217,13 @@ def plots(summary, mode_rows, err_rows, vtk_rows, emb_rows, outdir):
                      "(labels: t,cap; dual_peel: cap)", fontsize=8)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
-        fig.tight_layout()
-        f = os.path.join(outdir, f"translucent-errors-{s['set']}.png")
-        fig.savefig(f)
-        plt.close(fig)
-        files.append(f)
+        files.append(save(fig, os.path.join(outdir, f"translucent-errors-{s['set']}.png")))
     fig, ax = plt.subplots(figsize=(8, 3.6), dpi=80)
     keys = [(f"{label.replace(' ', '_')}_ms", label) for label, *_ in TABLE5]
     keys += [("vtk_ms", "VTK depth peeling (front)"), ("embree_trace_ms", "Embree reference trace")]
-    keys = [k for k in keys if any(isnum(s.get(k[0])) for s in summary)]
-    wbar = 0.85 / max(len(keys), 1)
-    for i, (k, label) in enumerate(keys):
-        ys = [s.get(k) if isnum(s.get(k)) else float("nan") for s in summary]
-        ax.bar([j + i * wbar for j in range(len(summary))], ys, wbar, label=label)
-    ax.set_xticks([j + 0.425 - wbar / 2 for j in range(len(summary))])
-    ax.set_xticklabels([f"{s['set'].upper()}\n{s['spheres']:,}" for s in summary], fontsize=8)
-    ax.set_yscale("log")
-    ax.set_ylabel("ms per frame, 1 thread")
-    ax.grid(True, axis="y", which="both", alpha=0.3)
-    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.0, 1.0))
-    fig.tight_layout()
-    f = os.path.join(outdir, "translucent-modes.png")
-    fig.savefig(f)
-    plt.close(fig)
-    return files + [f]
+    set_bars(ax, summary, keys, 0.85, "ms per frame, 1 thread", fontsize=6, loc="upper left",
+             bbox_to_anchor=(1.0, 1.0))
+    return files + [save(fig, os.path.join(outdir, "translucent-modes.png"))]
 
 
 def write_doc_block(lines):
