@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/bench-shadows --quick (no VTK, one thread): every scene gets its
+# scripts/bench shadows --quick (no VTK, one thread): every scene gets its
 # exact render and its 18 map renders (maps 512/1024 x PCF 1/4/9 x 1-SM,
 # 2-SM max, 3-SM), tilted its acne and peter-panning runs; the bench itself
 # asserts levels <= n*k+1, band RMSE < 0.5 and few far errors at map 1024, and
@@ -17,8 +17,8 @@ for c in /usr/bin/python3 python3; do
 done
 [[ -n "$py" ]] || { echo "SKIP: no python3 with numpy, scipy, matplotlib and OpenImageIO"; exit 77; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-ZSWEEP="$zsweep" PYTHON="$py" DISPLAY= "$src/scripts/bench-shadows" --quick --out "$tmp" >"$tmp/log" 2>&1 \
-  || { echo "FAIL: bench-shadows exit $?"; tail -30 "$tmp/log"; exit 1; }
+ZSWEEP="$zsweep" PYTHON="$py" DISPLAY= "$src/scripts/bench" shadows --quick --out "$tmp" >"$tmp/log" 2>&1 \
+  || { echo "FAIL: bench shadows exit $?"; tail -30 "$tmp/log"; exit 1; }
 "$py" - "$tmp" <<'PY'
 import csv, os, sys
 d = sys.argv[1]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/bench-spheres --ao --quick (no VTK, no Tachyon, no display; a few
+# scripts/bench spheres-ao --quick (no VTK, no Tachyon, no display; a few
 # thousand spheres per set and 1hpv when pymol-data is installed, 128²,
 # directions 6 and 18, maps 64² and 128²): every zsweep run (renders and
 # references) exits 0; per set and direction count, the error against the same
@@ -17,8 +17,8 @@ for c in /usr/bin/python3 python3; do
 done
 [[ -n "$py" ]] || { echo "SKIP: no python3 with numpy, matplotlib and OpenImageIO"; exit 77; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-ZSWEEP="$zsweep" PYTHON="$py" DISPLAY= "$src/scripts/bench-spheres" --ao --quick --out "$tmp" >"$tmp/log" 2>&1 \
-  || { echo "FAIL: bench-spheres --ao exit $?"; tail -20 "$tmp/log"; exit 1; }
+ZSWEEP="$zsweep" PYTHON="$py" DISPLAY= "$src/scripts/bench" spheres-ao --quick --out "$tmp" >"$tmp/log" 2>&1 \
+  || { echo "FAIL: bench spheres-ao exit $?"; tail -20 "$tmp/log"; exit 1; }
 "$py" - "$tmp" <<'PY'
 import csv, os, sys
 d = sys.argv[1]

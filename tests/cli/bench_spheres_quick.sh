@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/bench-spheres --quick (no VTK, no Embree, no display): every set
+# scripts/bench spheres --quick (no VTK, no Embree, no display): every set
 # gets its orbit rows (3 frames x basic and optimized, one thread), every
 # zsweep run exits 0, and optimized == basic bit for bit. (Every zsweep process
 # costs ~0.5 s of start-up here, so --quick leaves out the 2-thread runs.)
@@ -12,8 +12,8 @@ for c in /usr/bin/python3 python3; do
 done
 [[ -n "$py" ]] || { echo "SKIP: no python3 with numpy and matplotlib"; exit 77; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-ZSWEEP="$zsweep" PYTHON="$py" DISPLAY= "$src/scripts/bench-spheres" --quick --out "$tmp" >"$tmp/log" 2>&1 \
-  || { echo "FAIL: bench-spheres exit $?"; tail -20 "$tmp/log"; exit 1; }
+ZSWEEP="$zsweep" PYTHON="$py" DISPLAY= "$src/scripts/bench" spheres --quick --out "$tmp" >"$tmp/log" 2>&1 \
+  || { echo "FAIL: bench spheres exit $?"; tail -20 "$tmp/log"; exit 1; }
 "$py" - "$tmp" <<'PY'
 import csv, os, sys
 d = sys.argv[1]

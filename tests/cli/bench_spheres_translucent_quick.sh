@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/bench-spheres --translucent --quick (no VTK, no Embree, no display;
+# scripts/bench spheres-translucent --quick (no VTK, no Embree, no display;
 # small sets, 256², the small sweep): every zsweep run exits 0; peel run to
 # completion (t 0, no cap) equals sorted exact (max abs 0); sorted t 8 is
 # within 8/510 of exact; no row whose t/2-levels bound is guaranteed breaks
@@ -13,8 +13,8 @@ for c in /usr/bin/python3 python3; do
 done
 [[ -n "$py" ]] || { echo "SKIP: no python3 with numpy and matplotlib"; exit 77; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-ZSWEEP="$zsweep" PYTHON="$py" DISPLAY= "$src/scripts/bench-spheres" --translucent --quick --out "$tmp" \
-  >"$tmp/log" 2>&1 || { echo "FAIL: bench-spheres --translucent exit $?"; tail -20 "$tmp/log"; exit 1; }
+ZSWEEP="$zsweep" PYTHON="$py" DISPLAY= "$src/scripts/bench" spheres-translucent --quick --out "$tmp" \
+  >"$tmp/log" 2>&1 || { echo "FAIL: bench spheres-translucent exit $?"; tail -20 "$tmp/log"; exit 1; }
 "$py" - "$tmp" <<'PY'
 import csv, os, sys
 d = sys.argv[1]

@@ -1,8 +1,8 @@
-"""The scenes of scripts/bench-shadows: meshes written as .obj (world
+"""The scenes of scripts/bench shadows: meshes written as .obj (world
 coordinates) or the CGAL elephant (.off, with a transform), the ground square
 zsweep adds (src/scene/surface_input.cpp), a perspective camera that frames the
 surfaces and their shadows, the zsweep scene JSON and the VTK worker's job
-(scripts/bench_shadows_vtk.py) for the same scene."""
+(shadow_vtk.py) for the same scene."""
 import math
 import os
 import subprocess
@@ -61,7 +61,7 @@ def merge(parts):
 
 def write_obj(path, pts, tris):
     with open(path, "w") as f:
-        f.write("# written by scripts/bench_shadows_scenes.py\n")
+        f.write("# written by scripts/benchmarks/shadows/shadow_scenes.py\n")
         for p in pts:
             f.write("v %.9g %.9g %.9g\n" % tuple(p))
         for t in tris:

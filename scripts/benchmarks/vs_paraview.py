@@ -3,7 +3,8 @@ Tetrahedra, Z sweep, Bunyk ray cast), all called from pvpython on the same
 .vtu, camera and transfer function, one thread each (llvmpipe with
 LP_NUM_THREADS=1), with every image's error against `zsweep reference`.
 
-Run through scripts/bench-vs-paraview (it checks pvpython and xvfb). Each
+Run through scripts/bench vs-paraview (alias scripts/bench-vs-paraview; it
+checks pvpython and xvfb, and puts build/python on PYTHONPATH). Each
 mesh goes through `zsweep mesh convert` to .vtu first, so every renderer sees
 the same tets. ParaView's images are screen grabs over black (8-bit RGB), so
 errors compare RGB only, against the reference composited over black.
@@ -16,13 +17,11 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_common import ROOT, ZSWEEP, cpu_name, mesh_args, replace_block, run, scene_for, write_csv  # noqa: E402
+from .lib.common import ROOT, ZSWEEP, cpu_name, replace_block, run, write_csv
+from .lib.volume import mesh_args, scene_for
 
-sys.path.insert(0, os.path.join(ROOT, "build", "python"))
-import zsweep  # noqa: E402
-
-WORKER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bench_paraview_worker.py")
+# Run by path in pvpython (it imports nothing of this package).
+WORKER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "paraview_worker.py")
 
 
 def read(path):
@@ -36,15 +35,24 @@ def read(path):
     return img
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def main(argv):
+    ap = argparse.ArgumentParser(
+        prog="bench vs-paraview",
+        description="zsweep.render from pvpython against ParaView 5.11's unstructured volume mappers (Projected "
+                    "Tetrahedra, Z sweep, Bunyk ray cast), one thread each, with errors against `zsweep "
+                    "reference` (docs/python.md).",
+        epilog="Needs pvpython (python3-paraview) and xvfb. On Debian 12, python3-paraview conflicts with "
+               "python3-vtk9, which libvtk9-dev (the build) needs: build zsweep first, then `apt-get install "
+               "python3-paraview` (it removes the two; the VTK runtime zsweep uses stays), run this, and "
+               "reinstall libvtk9-dev to build again.")
     ap.add_argument("--meshes", default="spx,blunt")
     ap.add_argument("--size", type=int, default=512)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--mappers", default="Projected tetra,Z sweep,Bunyk ray cast")
     ap.add_argument("--out", default=os.path.join(ROOT, "build", "bench-vs-paraview"))
     ap.add_argument("--doc", action="store_true", help="write the table into docs/python.md")
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
+    import zsweep  # build/python, on PYTHONPATH (scripts/bench)
     os.makedirs(a.out, exist_ok=True)
     work = tempfile.mkdtemp(prefix="zsweep-pv-")
     rows = []
@@ -97,4 +105,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main(sys.argv[1:]))

@@ -1,10 +1,10 @@
-"""`scripts/bench-spheres --translucent`: zsweep's translucent sphere modes on
+"""`scripts/bench spheres --translucent` (alias `scripts/bench spheres-translucent`): zsweep's translucent sphere modes on
 the test sets C1-C4, one thread each (the seed's Table 5 analogue), their
 error against `sorted` exact as a function of the tolerance t and the layer
 cap, VTK's depth peeling and the Embree reference.
 
 Per set, on zsweep reference's automatic perspective camera (and, with
---frames N > 1, N - 1 more frames of bench_spheres.py's orbit; the Table 5
+--frames N > 1, N - 1 more frames of the orbit benchmark's orbit; the Table 5
 rows are then means over the frames):
 - Table 5 rows: sorted (t 8, cap 32: the defaults), sorted exact (t 0, no
   cap), peel (t 8, 32 layers), dual_peel (32 layers), weighted, and sorted
@@ -21,7 +21,7 @@ rows are then means over the frames):
   keeps that only when every translucent sphere has alpha >= 1 - (t/510)^(1/n);
 - VTK (--vtk): vtkOpenGLSphereMapper with the RGBA scalars' alpha, depth
   peeling (32 peels, occlusion ratio 0) on llvmpipe, one thread; one worker
-  per set (bench_spheres.vtk_worker), a warm-up frame first;
+  per set (lib/sphere_vtk.py), a warm-up frame first;
 - Embree (--embree): `zsweep reference` on the sorted-exact scene (it
   composites every crossing; it takes the scene's camera), one thread.
 Renders are bounded by --render-timeout (the exact ones, which every error
@@ -31,261 +31,16 @@ smaller-or-equal cap and larger-or-equal t timed out is skipped, not run.
 import concurrent.futures
 import json
 import os
-import shutil
-import struct
-import subprocess
 import sys
 import time
 
-import numpy as np
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import bench_spheres as bs  # noqa: E402
-from bench_common import write_csv  # noqa: E402
-
-ROOT = bs.ROOT
-EPS = 2e-6        # float rounding between two exact composites (dual_peel to completion: <= 1e-6)
-FLOOR = 1e-9      # RMSE 0 is plotted here (log scale)
-# --quick: C2's maximal balls are deeply nested (a 256² pixel crosses hundreds
-# of surfaces even with a few hundred spheres; exhaustive peeling of 20,000 of
-# them takes minutes), so its quick set is small.
-QUICK = dict(bs.QUICK, c2=100)
-
-# Table 5 rows: (label, mode, t, cap, surfaces)
-TABLE5 = [("sorted", "sorted", 8, 32, "both"), ("sorted exact", "sorted", 0, 0, "both"),
-          ("peel", "peel", 8, 32, "both"), ("dual_peel", "dual_peel", 0, 32, "both"),
-          ("weighted", "weighted", 0, 0, "both"), ("sorted front", "sorted", 8, 32, "front"),
-          ("sorted front exact", "sorted", 0, 0, "front")]
-SWEEPS = {"full": {"peel_t": [16, 8, 4, 2, 0], "caps": [8, 16, 32, 64, 0], "sorted_t": [16, 8, 4, 2]},
-          "small": {"peel_t": [8, 0], "caps": [8, 32, 0], "sorted_t": [8]}}
-
-
-def alpha_n(t, n):
-    """The smallest alpha for which n layers reach 1 - A <= t/510."""
-    return 1.0 - (t / 510.0) ** (1.0 / n) if n else 0.0
-
-
-def alpha_stats(path):
-    """(smallest alpha in (0, 1), translucent, opaque, clear) over the set's
-    float alphas, as the renderer reads them (alpha >= 1 opaque, <= 0 clear)."""
-    with open(path, "rb") as f:
-        head = f.read(24)
-    fields = int(np.frombuffer(head[8:12], "<u4")[0])
-    count = int(np.frombuffer(head[16:24], "<u8")[0])
-    if fields != 8:
-        return float("nan"), 0, count, 0
-    a = np.memmap(path, dtype="<f4", mode="r", offset=24, shape=(count, fields))
-    amin, tr, op, cl = float("inf"), 0, 0, 0
-    for i in range(0, count, 4_000_000):
-        al = np.asarray(a[i:i + 4_000_000, 7], dtype=np.float64)
-        m = (al > 0) & (al < 1)
-        tr += int(m.sum())
-        op += int((al >= 1).sum())
-        cl += int((~(al > 0)).sum())
-        if m.any():
-            amin = min(amin, float(al[m].min()))
-    return (amin if tr else float("nan")), tr, op, cl
-
-
-def read_tiff(path):
-    """R, G, B, A (h x w x 4 float32) of an uncompressed float TIFF as zsweep
-    writes it with `--compression none` (tiles or strips, samples contiguous)."""
-    b = open(path, "rb").read()
-    bo = {b"II": "<", b"MM": ">"}[b[:2]]
-    (off,) = struct.unpack(bo + "I", b[4:8])
-    (n,) = struct.unpack(bo + "H", b[off:off + 2])
-    tags = {}
-    for i in range(n):
-        tag, typ, cnt, val = struct.unpack(bo + "HHI4s", b[off + 2 + 12 * i:off + 14 + 12 * i])
-        if typ in (3, 4):  # SHORT, LONG
-            size = (2 if typ == 3 else 4) * cnt
-            raw = val if size <= 4 else b[struct.unpack(bo + "I", val)[0]:][:size]
-            tags[tag] = struct.unpack(bo + ("H" if typ == 3 else "I") * cnt, raw[:size])
-    w, h, spp = tags[256][0], tags[257][0], tags[277][0]
-    if tags.get(259, (1,))[0] != 1 or set(tags[258]) != {32} or set(tags.get(339, (1,))) != {3} \
-            or tags.get(284, (1,))[0] != 1 or spp < 4:
-        raise ValueError(f"{path}: not an uncompressed float RGBA TIFF")
-    img = np.empty((h, w, spp), np.float32)
-    dt = np.dtype(bo + "f4")
-    if 322 in tags:  # tiles
-        tw, th = tags[322][0], tags[323][0]
-        across = (w + tw - 1) // tw
-        for k, o in enumerate(tags[324]):
-            y, x = (k // across) * th, (k % across) * tw
-            t = np.frombuffer(b, dt, tw * th * spp, o).reshape(th, tw, spp)
-            img[y:y + th, x:x + tw] = t[:min(th, h - y), :min(tw, w - x)]
-    else:
-        rps = tags.get(278, (h,))[0]
-        for k, o in enumerate(tags[273]):
-            rows = min(rps, h - k * rps)
-            img[k * rps:k * rps + rows] = np.frombuffer(b, dt, rows * w * spp, o).reshape(rows, w, spp)
-    return img[:, :, :4]
-
-
-def compare_images(a, b):
-    """`zsweep compare A B`'s max abs and RMSE over R, G, B, A
-    (src/image/image_compare.cpp), in process: one zsweep process costs
-    ~0.5 s of start-up, and a set has ~40 images to compare."""
-    try:
-        e = np.abs(read_tiff(a).astype(np.float64) - read_tiff(b).astype(np.float64))
-    except (OSError, ValueError, KeyError) as x:
-        print(f"compare {a} {b}: {x}", file=sys.stderr)
-        return float("nan"), float("nan")
-    return float(np.nan_to_num(e, nan=np.inf).max()), float(np.sqrt((e * e).mean()))
-
-
-def key(v):
-    """What a variant's image depends on (sorted ignores the cap; dual_peel
-    and weighted the tolerance; weighted both)."""
-    m = v["mode"]
-    return (m, v["t"] if m in ("sorted", "peel") else None, v["cap"] if m in ("peel", "dual_peel") else None,
-            v["surfaces"])
-
-
-def tag(v):
-    k = key(v)
-    return k[0] + (f"-t{k[1]}" if k[1] is not None else "") + (f"-n{k[2]}" if k[2] is not None else "") + \
-        ("-front" if v["surfaces"] == "front" else "")
-
-
-def variant(mode, t, cap, surfaces="both"):
-    return {"mode": mode, "t": t, "cap": cap, "surfaces": surfaces}
-
-
-def render(scene_path, out, budget, repeat, timeout):
-    stats = out + ".stats.json"
-    if os.path.exists(stats):
-        os.remove(stats)
-    cmd = [bs.ZSWEEP, "render", scene_path, "-o", out, "--threads", "1", "--frames", str(repeat),
-           "--stats", stats, "--memory-budget", str(budget), "--compression", "none"]
-    t0 = time.perf_counter()
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return {"exit_status": f"timeout after {timeout:g} s", "timeout": True}
-    row = {"exit_status": p.returncode, "process_s": round(time.perf_counter() - t0, 3)}
-    if p.returncode != 0:
-        err = p.stderr.strip().splitlines()
-        row["error"] = err[-1][:200] if err else ""
-        sys.stderr.write(f"zsweep failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr}\n")
-        return row
-    with open(stats) as f:
-        j = json.load(f)
-    tr = j.get("translucency", {})
-    row.update({"ms": j["time_ms"]["total"], "setup_ms": j["time_ms"].get("setup"),
-                "peak_rss_mb": round(j.get("peak_rss_bytes", 0) / 2**20, 1),
-                "rendered_pixels": j.get("rendered_pixels"), "fragments": j.get("fragments")})
-    for k in ("passes", "layers_max", "layers_mean", "fragments_composited", "pixels_stopped", "spheres_clear",
-              "flushes", "pending_peak"):
-        row[k] = tr.get(k)
-    return row
-
-
-def run_reference(scene_path, out, timeout):
-    stats = out + ".stats.json"
-    cmd = ["/usr/bin/time", "-f", "MAXRSS %M", bs.ZSWEEP, "reference", scene_path, "-o", out, "--threads", "1",
-           "--stats", stats]
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return {"error": f"timeout after {timeout:g} s"}
-    if p.returncode != 0:
-        return {"error": f"exit {p.returncode}: {p.stderr.strip()[-200:]}"}
-    with open(stats) as f:
-        t = json.load(f)["time_ms"]
-    rss = [ln for ln in p.stderr.splitlines() if ln.startswith("MAXRSS ")]
-    return {"build_ms": t["build"], "trace_ms": t["trace"],
-            "peak_rss_mb": round(int(rss[-1].split()[1]) / 1024, 1) if rss else float("nan")}
-
-
-def sweep_variants(kind):
-    s = SWEEPS[kind]
-    vs = [variant("peel", t, cap) for t in s["peel_t"] for cap in s["caps"]]
-    vs += [variant("sorted", t, 32) for t in s["sorted_t"]]
-    vs += [variant("dual_peel", 0, cap) for cap in s["caps"]]
-    return vs + [variant("weighted", 0, 0)]
-
-
-def exact_timeout(a):
-    return a.exact_timeout or a.render_timeout
-
-
-def skipped_by(v, timeouts):
-    """A timed-out run that does less work than v (peel: t >= v's, cap
-    <= v's, 0 meaning none; dual_peel: cap <= v's), or None."""
-    def covers(cap, c2):
-        return cap == 0 or (c2 != 0 and cap >= c2)
-    for w in timeouts:
-        if w["mode"] == v["mode"] == "peel" and v["t"] <= w["t"] and covers(v["cap"], w["cap"]):
-            return w
-        if w["mode"] == v["mode"] == "dual_peel" and covers(v["cap"], w["cap"]):
-            return w
-    return None
-
-
-def bound_row(v, r, amin):
-    """The t/2-levels check of one error row."""
-    m, t, cap = v["mode"], v["t"], v["cap"]
-    out = {"alpha_min": amin}
-    if m in ("peel", "sorted"):
-        b = t / 2
-        capped = m == "peel" and cap != 0
-        out["alpha_n"] = alpha_n(t, cap) if capped else ""
-        out["guaranteed"] = "yes" if not capped or amin >= alpha_n(t, cap) else "no"
-    elif m == "dual_peel" and cap == 0:  # to completion: exact up to rounding
-        b = 0.0
-        out["alpha_n"] = ""
-        out["guaranteed"] = "yes"
-    else:
-        b = None
-        out["alpha_n"] = ""
-        out["guaranteed"] = "no"
-    out["bound_levels"] = b if b is not None else ""
-    mx = r.get("max_abs")
-    if isinstance(mx, float) and mx == mx:
-        out["max_abs_levels"] = mx * 255
-        out["within"] = "" if b is None else ("yes" if mx <= b / 255 + EPS else "no")
-    else:
-        out["max_abs_levels"] = ""
-        out["within"] = ""
-    out["violation"] = "BUG" if out["guaranteed"] == "yes" and out["within"] == "no" else ""
-    return out
-
-
-# ---------------------------------------------------------------- VTK check (runs in the worker)
-
-def vtk_opaque_check(vtk, ns, win, ren, actor, pd, px, png):
-    """The worker's translucent frame against the same frame with every alpha
-    set to 255 (no peeling then): they must differ. Untimed; the alphas are
-    restored and uploaded again before the next frame."""
-    col = pd.GetPointData().GetScalars()
-    a = ns.vtk_to_numpy(col)
-    keep = a[:, 3].copy()
-    a[:, 3] = 255
-    col.Modified()
-    pd.Modified()
-    win.Render()
-    win.WaitForCompletion()
-    out = {"opaque_depth_peeling": ren.GetLastRenderingUsedDepthPeeling(),
-           "opaque_translucent_actor": actor.HasTranslucentPolygonalGeometry()}
-    g = vtk.vtkWindowToImageFilter()
-    g.SetInput(win)
-    g.ReadFrontBufferOff()
-    g.Update()
-    q = ns.vtk_to_numpy(g.GetOutput().GetPointData().GetScalars())
-    d = (px[:, :3].astype(np.float64) - q[:, :3]) / 255
-    out["rmse_vs_opaque"] = float(np.sqrt((d * d).mean()))
-    out["max_abs_vs_opaque"] = float(np.abs(d).max())
-    w = vtk.vtkPNGWriter()
-    w.SetFileName(png[:-4] + "-opaque.png")
-    w.SetInputConnection(g.GetOutputPort())
-    w.Write()
-    a[:, 3] = keep
-    col.Modified()
-    pd.Modified()
-    win.Render()
-    win.WaitForCompletion()
-    return out
+from ..lib.common import all_cols, copy_to_docs, read_csv, write_csv
+from ..lib.sphere_sets import auto_camera, bounds, compare, ensure_set, orbit, scene
+from ..lib.sphere_vtk import VtkProcess
+from ..lib.spheres_cli import parse, sets_and_counts
+from .translucent_runs import (QUICK, TABLE5, alpha_stats, bound_row, compare_images, exact_timeout, key, render,
+                               run_reference, skipped_by, sweep_variants, tag, variant)
+from .translucent_tables import doc_lines, plots, summarize, write_doc_block
 
 
 # ---------------------------------------------------------------- one set
@@ -303,7 +58,7 @@ class SetRun:
         k = (fname, key(v))
         if k in self.done:
             return self.done[k]
-        sc = bs.scene(self.path, cam, self.size, self.a.memory_budget)
+        sc = scene(self.path, cam, self.size, self.a.memory_budget)
         sc["render"].update({"mode": v["mode"], "tolerance": v["t"], "max_layers": v["cap"],
                              "surfaces": v["surfaces"]})
         base = f"{self.name}-{fname}-{tag(v)}"
@@ -343,8 +98,8 @@ def run_set(a, name, count, size, cams, img, scenes, vtk_rows, emb_rows):
     print(f"{name}: {count:,} spheres, {ntr:,} translucent (alpha min {amin:.6f}), {nop:,} opaque, {ncl:,} clear",
           flush=True)
     S = SetRun(a, name, size, path, img, scenes)
-    vtkp = bs.VtkProcess(path, size, S.repeat, a.vtk_timeout, a.vtk_frame_timeout, a.vtk_budget,
-                         extra=("--vtk-translucent",)) if a.vtk else None
+    vtkp = VtkProcess(path, size, S.repeat, a.vtk_timeout, a.vtk_frame_timeout, a.vtk_budget,
+                      translucent=True) if a.vtk else None
     warm = {}
     if vtkp:
         warm = vtkp.frame(dict(cams[0][1], _warmup=True))
@@ -390,7 +145,7 @@ def run_set(a, name, count, size, cams, img, scenes, vtk_rows, emb_rows):
                    label="Embree reference (every crossing)", surfaces="both",
                    exit_status=emb.get("error", 0), ms=emb.get("trace_ms"), setup_ms=emb.get("build_ms"))
         if "error" not in emb and ref.get("exit_status") == 0:
-            emb["vs_exact_max_abs"], emb["vs_exact_rmse"] = bs.compare(out, ref["image"])
+            emb["vs_exact_max_abs"], emb["vs_exact_rmse"] = compare(out, ref["image"])
         emb_rows.append(emb)
         print(f"{name} Embree: " + (f"build {emb['build_ms']:.0f} ms, trace {emb['trace_ms']:.0f} ms"
                                     if "error" not in emb else emb["error"]), flush=True)
@@ -404,12 +159,12 @@ def run_set(a, name, count, size, cams, img, scenes, vtk_rows, emb_rows):
     for row in vtk_rows:
         if row["set"] == name and row.get("png") and fe and fe.get("exit_status") == 0:
             row["rgb_vs_front_exact_max_abs"], row["rgb_vs_front_exact_rmse"] = \
-                bs.compare(row["png"], fe["image"], "--rgb")
+                compare(row["png"], fe["image"], "--rgb")
     # The in-process compare against zsweep compare, once per set.
     r, ref = S.done[("auto", key(variant("sorted", 8, 32)))], S.done[("auto", key(variant("sorted", 0, 0)))]
     check = ""
     if r.get("exit_status") == 0 and ref.get("exit_status") == 0:
-        m, e = bs.compare(r["image"], ref["image"])
+        m, e = compare(r["image"], ref["image"])
         check = "yes" if abs(m - r["max_abs"]) <= 1e-9 and abs(e - r["rmse"]) <= 1e-9 else "NO"
         if check != "yes":
             print(f"*** {name}: in-process compare ({r['max_abs']}, {r['rmse']}) != zsweep compare ({m}, {e})",
@@ -449,46 +204,24 @@ def run_set(a, name, count, size, cams, img, scenes, vtk_rows, emb_rows):
 
 def replot(d, doc):
     """The plots again from DIR's CSVs (with --doc: into docs/bench)."""
-    import csv
-    from bench_spheres_translucent_tables import plots
-
-    def num(v):
-        try:
-            x = float(v)
-        except ValueError:
-            return v
-        return int(x) if x.is_integer() and "." not in v and "e" not in v else x
-
-    def load(f):
-        return [{k: num(v) for k, v in r.items()} for r in csv.DictReader(open(os.path.join(d, f)))]
-    summary, errors = load("translucent-summary.csv"), load("translucent-errors.csv")
+    summary, errors = read_csv(d, "translucent-summary.csv"), read_csv(d, "translucent-errors.csv")
     for r in errors:
         if isinstance(r.get("ms"), int):
             r["ms"] = float(r["ms"])
     files = plots(summary, [], errors, [], [], d)
     if doc:
-        for f in files:
-            shutil.copy(f, os.path.join(ROOT, "docs", "bench", os.path.basename(f)))
+        copy_to_docs(files)
     print("wrote", ", ".join(files))
     return 0
 
 
-def main(a, ap):
-    from bench_spheres_translucent_tables import all_cols, doc_lines, plots, summarize, write_doc_block
+def main(argv):
+    a, ap = parse(argv)
     if a.replot:
         return replot(a.replot, a.doc)
     size = a.size or (256 if a.quick else 1024)
     nframes = a.frames or 1
-    sets = a.sets.split(",")
-    for s in sets:
-        if s not in bs.FULL:
-            ap.error(f"unknown set {s} (c1, c2, c3, c4)")
-    if a.counts:
-        counts = [int(float(c)) for c in a.counts.split(",")]
-        if len(counts) != len(sets):
-            ap.error("--counts needs one count per set")
-    else:
-        counts = [(QUICK if a.quick else bs.FULL)[s] for s in sets]
+    sets, counts = sets_and_counts(a, ap, QUICK)
     if a.threads and a.threads != "1":
         print("bench-spheres --translucent: one thread only (--threads ignored)", file=sys.stderr)
     os.makedirs(a.out, exist_ok=True)
@@ -499,16 +232,11 @@ def main(a, ap):
     mode_rows, err_rows, vtk_rows, emb_rows, summary, all_cams = [], [], [], [], [], []
 
     def one_set(name, count):
-        path = os.path.join(a.out, f"{name}-{count}.sphb")
-        if not os.path.exists(path):
-            t = time.perf_counter()
-            subprocess.run([bs.ZSWEEP, "spheres", "generate", name, "--count", str(count), "-o", path],
-                           check=True, capture_output=True)
-            print(f"{name}: generated {count:,} spheres in {time.perf_counter() - t:.1f} s", flush=True)
-        lo, hi = bs.bounds(path)
-        cams = [("auto", bs.auto_camera(lo, hi, size, size))]
+        path = ensure_set(a.out, name, count)
+        lo, hi = bounds(path)
+        cams = [("auto", auto_camera(lo, hi, size, size))]
         if nframes > 1:
-            cams += [(f"f{k:03d}", c) for k, c in enumerate(bs.orbit(lo, hi, nframes)) if k > 0]
+            cams += [(f"f{k:03d}", c) for k, c in enumerate(orbit(lo, hi, nframes)) if k > 0]
         return cams, run_set(a, name, count, size, cams, img, scenes, vtk_rows, emb_rows)
 
     # --quick (a smoke test: its times mean nothing) runs two sets at a time.
@@ -535,9 +263,7 @@ def main(a, ap):
     print(f"wrote {a.out}/translucent-modes.csv, translucent-errors.csv, translucent-summary.csv, "
           "translucent-results.md, " + ", ".join(os.path.basename(f) for f in files))
     if a.doc:
-        os.makedirs(os.path.join(ROOT, "docs", "bench"), exist_ok=True)
-        for f in files:
-            shutil.copy(f, os.path.join(ROOT, "docs", "bench", os.path.basename(f)))
+        copy_to_docs(files)
         write_doc_block(lines)
     bad = sum(s["bound_violations"] for s in summary)
     if bad:
@@ -546,4 +272,4 @@ def main(a, ap):
 
 
 if __name__ == "__main__":
-    sys.exit(bs.main())
+    sys.exit(main(sys.argv[1:]))

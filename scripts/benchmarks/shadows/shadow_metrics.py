@@ -1,4 +1,4 @@
-"""Image metrics of scripts/bench-shadows: a map-mode lit0 against the exact
+"""Image metrics of scripts/bench shadows: a map-mode lit0 against the exact
 (Embree shadow-ray) lit0 of the same view.
 
 - levels: distinct lit0 values over the surface pixels (finite lit0); the
@@ -17,6 +17,8 @@ import math
 
 import numpy as np
 from scipy import ndimage
+
+from ..lib.common import luminance
 
 
 def read_exr(path):
@@ -96,10 +98,6 @@ def metrics(ref, lit, texel, band_texels, depths, pcf):
         "wrong_lit_all": int((wrong_lit & surf).sum()),
         "wrong_shadowed_all": int((wrong_shadowed & surf).sum()),
     }
-
-
-def luminance(rgb):
-    return rgb[..., 0] * 0.2126 + rgb[..., 1] * 0.7152 + rgb[..., 2] * 0.0722
 
 
 def darker_pixels(shadowed_exr, plain_exr):

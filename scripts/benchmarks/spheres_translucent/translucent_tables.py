@@ -1,24 +1,18 @@
-"""`scripts/bench-spheres --translucent`'s summary per set, its Markdown
+"""`scripts/bench spheres --translucent`'s summary per set, its Markdown
 tables (translucent-results.md; with --doc the block between the
 bench-spheres-translucent markers of docs/spheres-bench.md) and its plots
 (translucent-errors-SET.png: time vs RMSE against sorted exact;
 translucent-modes.png: the Table 5 analogue's times). The runs are
-bench_spheres_translucent.py's."""
+translucent.py's."""
 import datetime
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import bench_spheres as bs  # noqa: E402
-from bench_common import cpu_name, cpu_vector_isa, replace_block  # noqa: E402
-from bench_spheres_translucent import FLOOR, ROOT, TABLE5  # noqa: E402
+from ..lib.common import ROOT, cpu_name, cpu_vector_isa, fmt, isnum, replace_block
+from ..lib.plots import pyplot, save, set_bars
+from .translucent_runs import FLOOR, TABLE5
 
 DOC_NAME = "bench-spheres-translucent"
 DOC_HEADING = "## Translucency (`--translucent`)"
-
-
-def isnum(x):
-    return isinstance(x, (int, float)) and not isinstance(x, bool) and x == x
 
 
 def mean_of(rows, label, k="ms"):
@@ -76,21 +70,14 @@ def summarize(name, count, size, mode_rows, err_rows, astats, vtk_rows, emb, bud
     return s
 
 
-def fmt(x, d=1):
-    if isinstance(x, float) and x != x:  # nan: not measured (a timeout)
-        return "–"
-    return bs.fmt(x, d) if isnum(x) else ("–" if x in (None, "") else str(x))
-
-
 def ok_mark(x):
     return {"yes": "yes", "no": "**no**"}.get(x, x or "–")
 
 
 def doc_lines(a, summary, mode_rows, err_rows, vtk_rows, emb_rows, size, cams, wall, pngs):
-    cmd = "scripts/bench-spheres " + " ".join(sys.argv[1:])
     nfr = len(cams)
     L = [f"Measured {datetime.date.today().isoformat()} on {cpu_name()} ({os.cpu_count()} cores, {cpu_vector_isa()}), "
-         f"`{cmd.strip()}` ({wall / 60:.1f} min): {size}², perspective, zsweep reference's automatic camera"
+         f"`{a.command}` ({wall / 60:.1f} min): {size}², perspective, zsweep reference's automatic camera"
          + (f" and {nfr - 1} orbit frames (Table 5 rows: means over the {nfr} frames)" if nfr > 1 else "") +
          f", one thread, `render --frames {a.repeat or 1}`, memory budget {a.memory_budget:g} MiB, "
          f"render timeout {a.render_timeout:g} s"
@@ -198,10 +185,8 @@ def doc_lines(a, summary, mode_rows, err_rows, vtk_rows, emb_rows, size, cams, w
 
 
 def plots(summary, mode_rows, err_rows, vtk_rows, emb_rows, outdir):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import matplotlib.ticker  # noqa: F401
+    plt = pyplot()
+    import matplotlib.ticker
     files = []
     styles = {"sorted": ("o", "C0"), "peel": ("s", "C1"), "dual_peel": ("^", "C2"), "weighted": ("D", "C3")}
     for s in summary:
@@ -232,41 +217,15 @@ def plots(summary, mode_rows, err_rows, vtk_rows, emb_rows, outdir):
                      "(labels: t,cap; dual_peel: cap)", fontsize=8)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
-        fig.tight_layout()
-        f = os.path.join(outdir, f"translucent-errors-{s['set']}.png")
-        fig.savefig(f)
-        plt.close(fig)
-        files.append(f)
+        files.append(save(fig, os.path.join(outdir, f"translucent-errors-{s['set']}.png")))
     fig, ax = plt.subplots(figsize=(8, 3.6), dpi=80)
     keys = [(f"{label.replace(' ', '_')}_ms", label) for label, *_ in TABLE5]
     keys += [("vtk_ms", "VTK depth peeling (front)"), ("embree_trace_ms", "Embree reference trace")]
-    keys = [k for k in keys if any(isnum(s.get(k[0])) for s in summary)]
-    wbar = 0.85 / max(len(keys), 1)
-    for i, (k, label) in enumerate(keys):
-        ys = [s.get(k) if isnum(s.get(k)) else float("nan") for s in summary]
-        ax.bar([j + i * wbar for j in range(len(summary))], ys, wbar, label=label)
-    ax.set_xticks([j + 0.425 - wbar / 2 for j in range(len(summary))])
-    ax.set_xticklabels([f"{s['set'].upper()}\n{s['spheres']:,}" for s in summary], fontsize=8)
-    ax.set_yscale("log")
-    ax.set_ylabel("ms per frame, 1 thread")
-    ax.grid(True, axis="y", which="both", alpha=0.3)
-    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.0, 1.0))
-    fig.tight_layout()
-    f = os.path.join(outdir, "translucent-modes.png")
-    fig.savefig(f)
-    plt.close(fig)
-    return files + [f]
+    set_bars(ax, summary, keys, 0.85, "ms per frame, 1 thread", fontsize=6, loc="upper left",
+             bbox_to_anchor=(1.0, 1.0))
+    return files + [save(fig, os.path.join(outdir, "translucent-modes.png"))]
 
 
 def write_doc_block(lines):
     replace_block(os.path.join(ROOT, "docs", "spheres-bench.md"), DOC_NAME, lines, DOC_HEADING,
                   "scripts/bench-spheres --translucent")
-
-
-def all_cols(rows):
-    cols = []
-    for r in rows:
-        for k in r:
-            if k not in cols:
-                cols.append(k)
-    return [{k: r.get(k, "") for k in cols} for r in rows]

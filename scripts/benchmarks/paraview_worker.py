@@ -1,11 +1,11 @@
-"""Runs inside pvpython (scripts/bench-vs-paraview starts it): one mesh, one
+"""Runs inside pvpython (scripts/bench vs-paraview starts it, by path): one mesh, one
 scene, ParaView 5.11's unstructured volume mappers and zsweep.render called
 from the same pvpython, one thread each. Prints one JSON object per line.
 
 ParaView's frames: the first Render() of each mapper (its caches) is
 discarded, then the best of `repeat` StillRender() calls. zsweep's: the best
 of `repeat` frames after one discarded, by its own stats (time_ms.total), as
-in scripts/bench-vs-vtk; the wall time of the whole call (the fetch of the
+in scripts/bench vs-vtk; the wall time of the whole call (the fetch of the
 dataset from the pipeline and its conversion included) is reported too."""
 import argparse
 import json

@@ -1,4 +1,4 @@
-"""Charts and summary.md of scripts/bench-shadows."""
+"""Charts and summary.md of scripts/bench shadows."""
 import datetime
 import math
 import os
@@ -7,11 +7,15 @@ import subprocess
 
 import numpy as np
 
+from ..lib.plots import pyplot, save
+
 PAIRS = [("3-SM+PCF4", "1-SM+PCF9"), ("2-SM(max)+PCF9", "1-SM+PCF16"), ("3-SM+PCF9", "1-SM+PCF16")]
 Q_R = (9, 5)  # the thesis's q (3×3 neighbourhood) and r = 9 − 4
 
 
-def fmt(x, nd=1):
+def cell(x, nd=1):
+    """A table cell as this summary writes it: floats with nd decimals, no
+    thousands separators; "–" for no value."""
     if x is None or x == "":
         return "–"
     if isinstance(x, float):
@@ -21,8 +25,14 @@ def fmt(x, nd=1):
 
 def table(head, rows):
     out = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
-    out += ["| " + " | ".join(fmt(c) for c in r) + " |" for r in rows]
+    out += ["| " + " | ".join(cell(c) for c in r) + " |" for r in rows]
     return out
+
+
+def config_table(cfgs, maps, get, text):
+    """Configurations (rows) by map size (columns); text(row): a cell."""
+    body = [[c] + [text(get[(c, m)]) if (c, m) in get else "–" for m in maps] for c in cfgs]
+    return table(["config"] + [f"map {m}" for m in maps], body)
 
 
 def machine():
@@ -74,9 +84,8 @@ def cross_analysis(cross):
 # ---------------------------------------------------------------- charts
 
 def plots(out, rows, cross):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
+    import matplotlib.ticker
     markers = {1: "o", 4: "s", 9: "^", 16: "D"}
     for scene in sorted({r["scene"] for r in rows}):
         rs = [r for r in rows if r["scene"] == scene and r["kind"] == "map"]
@@ -105,9 +114,7 @@ def plots(out, rows, cross):
         ax.set_title(f"{scene}: time vs edge-band error (marker size = map size)")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, f"scatter-{scene}.png"), dpi=110)
-        plt.close(fig)
+        save(fig, os.path.join(out, f"scatter-{scene}.png"), dpi=110)
     if cross:
         fig, ax = plt.subplots(figsize=(7.5, 5))
         res = cross_analysis(cross)
@@ -131,9 +138,7 @@ def plots(out, rows, cross):
         ax.set_title(f"Eq. 5.6/5.7 on bars, map {cross[0]['map_size']}²")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "crossover.png"), dpi=110)
-        plt.close(fig)
+        save(fig, os.path.join(out, "crossover.png"), dpi=110)
 
 
 # ---------------------------------------------------------------- summary.md
@@ -174,31 +179,14 @@ def scene_section(a, scene, rs):
          f"{ex['surface_pixels']} surface pixels, {ex['edge_pixels']} exact edge pixels. "
          f"![scatter](scatter-{scene}.png)", "",
          "Band RMSE / band max / frame ms per map size:", ""]
-    body = []
-    for c in cfgs:
-        line = [c]
-        for m in maps:
-            r = get.get((c, m))
-            line.append(f"{r['band_rmse']:.3f} / {r['band_max']:.2f} / {r['time_ms']:.0f}" if r else "–")
-        body.append(line)
-    L += table(["config"] + [f"map {m}" for m in maps], body)
+    L += config_table(cfgs, maps, get, lambda r: f"{r['band_rmse']:.3f} / {r['band_max']:.2f} / {r['time_ms']:.0f}")
     first = {m: get[(cfgs[0], m)] for m in maps if (cfgs[0], m) in get}
     L += ["", "Band size (its pixels, and its half-width of " + f"{a.band:g}" + " texels in pixels at the median surface depth): "
           + "; ".join(f"map {m}: {r['band_pixels']} px, {band_px(a, r):.1f} px" for m, r in first.items()) + "."]
     L += ["", "Outside the band: wrongly lit / wrongly shadowed pixels; levels found / n·k+1 "
           "(✓ = bound reached):", ""]
-    body = []
-    for c in cfgs:
-        line = [c]
-        for m in maps:
-            r = get.get((c, m))
-            if r:
-                ok = " ✓" if r["levels_reached"] else ""
-                line.append(f"{r['far_wrong_lit']} / {r['far_wrong_shadowed']}; {r['levels']}/{r['max_levels']}{ok}")
-            else:
-                line.append("–")
-        body.append(line)
-    L += table(["config"] + [f"map {m}" for m in maps], body)
+    L += config_table(cfgs, maps, get, lambda r: f"{r['far_wrong_lit']} / {r['far_wrong_shadowed']}; "
+                      f"{r['levels']}/{r['max_levels']}" + (" ✓" if r["levels_reached"] else ""))
     mp = [r for r in rs if r["kind"] == "map"]
     if scene == "bars" and mp:
         reached = sorted({r["config"] for r in mp if r["levels_reached"]}, key=cfgs.index)

@@ -1,7 +1,7 @@
 """zsweep vs VTK's unstructured-grid volume mappers, same mesh/camera/TF/size.
 
-Run through scripts/bench-vs-vtk (it provides python3-vtk9 and a virtual X
-display). Every mesh goes through `zsweep mesh convert` to .vtu first, so both
+Run through scripts/bench vs-vtk (alias scripts/bench-vs-vtk; it provides
+python3-vtk9 and a virtual X display). Every mesh goes through `zsweep mesh convert` to .vtu first, so both
 renderers see the same tets; the camera and transfer function are computed
 here and given to both. Times are steady-state frames: VTK's first Render()
 (which builds its caches) is discarded; zsweep's time is its render time
@@ -12,19 +12,12 @@ import argparse
 import datetime
 import json
 import os
-import subprocess
 import sys
 import tempfile
 import time
 
-import vtk
-
-vtk.vtkObject.GlobalWarningDisplayOff()  # VTK ZSweep warns "Undefined edge case" per face
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_common import MESHES, cpu_name, cpu_vector_isa, mesh_args, replace_block, run, scene_for, write_csv  # noqa: E402,F401
-
-from bench_common import ROOT, SHARED, ZSWEEP  # noqa: E402,F401
+from .lib.common import ROOT, ZSWEEP, cpu_name, cpu_vector_isa, replace_block, run, write_csv
+from .lib.volume import mesh_args, scene_for
 
 # VTK's ray caster's integrators. With one scalar and independent components
 # (our scenes) it picks `preintegration` itself: a table of (front scalar,
@@ -33,9 +26,9 @@ from bench_common import ROOT, SHARED, ZSWEEP  # noqa: E402,F401
 # linear transfer functions, `partial` Moreland and Angel's partial
 # pre-integration (a table of its psi function; VTK 9.1's crashes on post).
 VTK_INTEGRATORS = {
-    "preintegration": vtk.vtkUnstructuredGridPreIntegration,
-    "partial": vtk.vtkUnstructuredGridPartialPreIntegration,
-    "linear": vtk.vtkUnstructuredGridLinearRayIntegrator,
+    "preintegration": "vtkUnstructuredGridPreIntegration",
+    "partial": "vtkUnstructuredGridPartialPreIntegration",
+    "linear": "vtkUnstructuredGridLinearRayIntegrator",
 }
 
 
@@ -65,6 +58,7 @@ class VtkRenderer:
     first frame (which builds VTK's caches) is rendered and discarded."""
 
     def __init__(self, vtu, scene, mapper_kind, vtk_threads=1, integrator=None):
+        import vtk
         reader = vtk.vtkXMLUnstructuredGridReader()
         reader.SetFileName(vtu)
         reader.Update()
@@ -90,7 +84,7 @@ class VtkRenderer:
             # compare one thread with one thread.
             mapper.SetNumberOfThreads(vtk_threads)
             if integrator:
-                mapper.SetRayIntegrator(VTK_INTEGRATORS[integrator]())
+                mapper.SetRayIntegrator(getattr(vtk, VTK_INTEGRATORS[integrator])())
         # Full resolution every frame: no sample-distance adjustment from the
         # previous frame's time.
         mapper.SetAutoAdjustSampleDistances(0)
@@ -125,6 +119,7 @@ class VtkRenderer:
         return time.perf_counter() - t0
 
     def save(self, out_png):
+        import vtk
         grab = vtk.vtkWindowToImageFilter()
         grab.SetInput(self.win)
         grab.Update()
@@ -135,7 +130,13 @@ class VtkRenderer:
 
 
 def parser():
-    ap = argparse.ArgumentParser()
+    ap = argparse.ArgumentParser(
+        prog="bench vs-vtk",
+        description="Times zsweep against VTK's vtkUnstructuredGridVolumeZSweepMapper and "
+                    "vtkUnstructuredGridVolumeRayCastMapper on the same meshes, resolutions, camera and transfer "
+                    "function, in one run. Writes docs/benchmarks.csv and the table in docs/benchmarks.md between "
+                    "the bench-vs-vtk markers.",
+        epilog="Needs python3-vtk9 and xvfb (scripts/bench installs them if missing).")
     ap.add_argument("--sizes", default="512,1024")
     ap.add_argument("--meshes", default="spx,blunt,post")
     ap.add_argument("--repeat", type=int, default=3,
@@ -165,9 +166,11 @@ def parser():
     return ap
 
 
-def main():
+def main(argv):
     ap = parser()
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
+    import vtk
+    vtk.vtkObject.GlobalWarningDisplayOff()  # VTK ZSweep warns "Undefined edge case" per face
     integrators = a.vtk_integrators.split(",")
     for i in integrators:
         if i != "default" and i not in VTK_INTEGRATORS:
@@ -289,4 +292,4 @@ def update_doc(rows, a):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(sys.argv[1:]))

@@ -1,7 +1,7 @@
 """Thread scaling and peak memory of `zsweep render` at large sizes.
 
-Run through scripts/bench-scaling. For every mesh, size and thread count it
-renders once (one process per run, so peak RSS is that render's), to a
+Run through scripts/bench scaling (alias scripts/bench-scaling). For every
+mesh, size and thread count it renders once (one process per run, so peak RSS is that render's), to a
 streamed EXR in a scratch directory that is deleted afterwards, and reads
 time_ms.total and peak_rss_bytes from --stats. Speedups are within one run
 of this script, thread count against one thread, same mesh and size.
@@ -17,33 +17,16 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_common import cpu_name, cpu_vector_isa, replace_block, write_csv  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ZSWEEP = os.environ.get("ZSWEEP", os.path.join(ROOT, "build", "src", "zsweep"))
-SHARED = os.environ.get("ZSWEEP_SHARED", os.path.join(ROOT, "..", "shared", "datasets"))
-
-MESHES = {
-    "spx": ["spx.off"],
-    "blunt": ["bluntfinxyz.bin", "--q", "bluntfinq.bin", "--scalar", "density"],
-    "post": ["postxyz.bin", "--q", "postq.bin", "--scalar", "velocity-magnitude"],
-}
+from .lib.common import ROOT, ZSWEEP, cpu_name, cpu_vector_isa, replace_block, write_csv
+from .lib.volume import mesh_args
 
 
-def mesh_args(name):
-    args = list(MESHES[name])
-    args[0] = os.path.join(SHARED, args[0])
-    if "--q" in args:
-        i = args.index("--q") + 1
-        args[i] = os.path.join(SHARED, args[i])
-    return args
-
-
-
-
-def main():
-    ap = argparse.ArgumentParser()
+def main(argv):
+    ap = argparse.ArgumentParser(
+        prog="bench scaling",
+        description="Thread scaling and peak memory of `zsweep render` at 2048², 8192², 16384² on the shared "
+                    "datasets. Writes docs/bench/scaling.csv and the table in docs/benchmarks.md between the "
+                    "bench-scaling markers.")
     ap.add_argument("--meshes", default="spx,blunt,post")
     ap.add_argument("--sizes", default="2048,8192,16384")
     ap.add_argument("--threads", default="1,2")
@@ -51,7 +34,7 @@ def main():
     ap.add_argument("--repeat", type=int, default=1, help="interleaved rounds over the thread counts; best of them")
     ap.add_argument("--csv", default=os.path.join(ROOT, "docs", "bench", "scaling.csv"))
     ap.add_argument("--no-doc", action="store_true", help="do not update docs/benchmarks.md")
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     work = tempfile.mkdtemp(prefix="zsweep-scaling-")
     rows = []
     try:
@@ -109,4 +92,4 @@ def update_doc(rows, a):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(sys.argv[1:]))

@@ -1,10 +1,9 @@
-#!/usr/bin/python3
 """VTK side of the shadow-map benchmark: renders a triangle-mesh scene with
 VTK 9.1's vtkShadowMapPass (+ its vtkShadowMapBakerPass) offscreen on Mesa
 llvmpipe and prints the timings as one JSON line on stdout.
 
-  LP_NUM_THREADS=1 xvfb-run -a -s "-screen 0 1280x1024x24" \
-      /usr/bin/python3 scripts/bench_shadows_vtk.py JOB.json
+  LP_NUM_THREADS=1 PYTHONPATH=scripts xvfb-run -a -s "-screen 0 1280x1024x24" \
+      /usr/bin/python3 -m benchmarks.shadows.shadow_vtk JOB.json
 
 JOB.json: {"surfaces": [{"path", "color", "transform": {"translate", "rotate_deg",
 "scale"}}], "ground": [4 corners, optional], "ground_color", "camera": {"eye",
@@ -31,10 +30,9 @@ import numpy as np  # noqa: E402
 import vtk  # noqa: E402
 from vtk.util import numpy_support  # noqa: E402
 
+from ..lib import common  # noqa: E402
 
-def fail(msg):
-    print("bench_shadows_vtk: " + msg, file=sys.stderr)
-    sys.exit(1)
+PROG = "shadow_vtk"
 
 
 def set_points(pd, pts):
@@ -49,13 +47,13 @@ def read_off(path):
         lines = [l.split("#", 1)[0].split() for l in f]
     lines = [l for l in lines if l]
     if not lines or not lines[0][0].endswith("OFF"):
-        fail(f"{path}: not an OFF file")
+        common.fail(PROG, f"{path}: not an OFF file")
     head, i = lines[0][1:], 1
     if len(head) < 2:
         head, i = lines[1], 2
     nv, nf = int(head[0]), int(head[1])
     if len(lines) < i + nv + nf:
-        fail(f"{path}: truncated OFF file")
+        common.fail(PROG, f"{path}: truncated OFF file")
     pts = np.array([l[:3] for l in lines[i:i + nv]], dtype=np.float64)
     offsets, conn = [0], []
     for l in lines[i + nv:i + nv + nf]:
@@ -64,7 +62,7 @@ def read_off(path):
         offsets.append(len(conn))
     conn = np.array(conn, dtype=np.int64)
     if conn.size and (conn.min() < 0 or conn.max() >= nv):
-        fail(f"{path}: face index out of range")
+        common.fail(PROG, f"{path}: face index out of range")
     pd = set_points(vtk.vtkPolyData(), pts)
     cells = vtk.vtkCellArray()
     cells.SetData(numpy_support.numpy_to_vtkIdTypeArray(np.array(offsets, dtype=np.int64), deep=True),
@@ -75,7 +73,7 @@ def read_off(path):
 
 def read_mesh(path):
     if not os.path.isfile(path):
-        fail(f"{path}: no such file")
+        common.fail(PROG, f"{path}: no such file")
     ext = os.path.splitext(path)[1].lower()
     readers = {".obj": vtk.vtkOBJReader, ".ply": vtk.vtkPLYReader, ".stl": vtk.vtkSTLReader}
     if ext in readers:
@@ -87,7 +85,7 @@ def read_mesh(path):
         pd = read_off(path)
     out = triangulate(pd)
     if out.GetNumberOfPolys() == 0:
-        fail(f"{path}: no triangles")
+        common.fail(PROG, f"{path}: no triangles")
     return out
 
 
@@ -132,21 +130,12 @@ def grab(win):
 
 
 def luminance(img):
-    a = numpy_support.vtk_to_numpy(img.GetPointData().GetScalars()).astype(np.float64) / 255.0
-    return a[:, 0] * 0.2126 + a[:, 1] * 0.7152 + a[:, 2] * 0.0722
-
-
-def peak_rss_mb():
-    with open("/proc/self/status") as f:
-        for line in f:
-            if line.startswith("VmHWM:"):
-                return int(line.split()[1]) / 1024.0
-    return None
+    return common.luminance(numpy_support.vtk_to_numpy(img.GetPointData().GetScalars()).astype(np.float64) / 255.0)
 
 
 def main():
     if len(sys.argv) != 2:
-        fail("usage: bench_shadows_vtk.py JOB.json")
+        common.fail(PROG, "usage: python3 -m benchmarks.shadows.shadow_vtk JOB.json")
     try:
         with open(sys.argv[1]) as f:
             job = json.load(f)
@@ -155,9 +144,9 @@ def main():
         map_size, repeat = int(job["map_size"]), max(1, int(job.get("repeat", 3)))
         surfaces = job["surfaces"]
     except (OSError, ValueError, KeyError, TypeError) as e:
-        fail(f"bad job file {sys.argv[1]}: {e!r}")
+        common.fail(PROG, f"bad job file {sys.argv[1]}: {e!r}")
     if np.linalg.norm(direction) == 0:
-        fail("light direction is zero")
+        common.fail(PROG, "light direction is zero")
     light_kind = job.get("light_kind", "directional")
     rebake = bool(job.get("rebake", True))
 
@@ -227,7 +216,7 @@ def main():
     win.WaitForCompletion()
     warmup_s = time.perf_counter() - t0
     if not shadows.GetShadowMapBakerPass().GetHasShadows():
-        fail("vtkShadowMapBakerPass made no shadow map (light kind %s)" % light_kind)
+        common.fail(PROG, "vtkShadowMapBakerPass made no shadow map (light kind %s)" % light_kind)
 
     def timed(touch):
         ms = []
@@ -262,7 +251,7 @@ def main():
         "frame_ms": round(min(frames), 3), "frames_ms": [round(x, 3) for x in frames],
         "frame_cached_ms": round(min(cached), 3), "rebake": rebake,
         "frame_plain_ms": round(min(plain), 3),
-        "peak_rss_mb": peak_rss_mb(), "triangles": triangles, "light_kind": light_kind,
+        "peak_rss_mb": common.peak_rss_mb(), "triangles": triangles, "light_kind": light_kind,
         "map_size": map_size, "width": width, "height": height,
         "shadow_check": {"darker_pixels": darker, "pixels": width * height},
         "gl_renderer": gl, "vtk_version": vtk.vtkVersion.GetVTKVersion()}))

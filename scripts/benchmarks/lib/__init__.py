@@ -1,0 +1,2 @@
+"""The benchmarks' shared library: the only package a benchmark imports; it
+imports no benchmark."""
