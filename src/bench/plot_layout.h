@@ -2,7 +2,7 @@
 // ranges, round tick values and their labels, and a place for every piece of
 // text (title, axis labels, ticks, reference marks, legend, point labels) such
 // that no two overlap. Pure geometry, so it is tested without a font
-// (tests/unit/test_plot_layout.cpp); line_plot.cpp draws it.
+// (tests/unit/bench/test_plot_layout.cpp); line_plot.cpp draws it.
 #pragma once
 
 #include <functional>

@@ -1,0 +1,352 @@
+// The ZSweep engine against closed forms and fine quadrature.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "geometry/tets/topology.h"
+#include "support/test_meshes.h"
+#include "render/volume/zsweep_renderer.h"
+
+namespace zs {
+namespace {
+
+using test::box_chord;
+using test::box_mesh;
+using test::spec_ray;
+using test::settings;
+
+Image render(const TetMesh& m, const RenderSettings& rs, RenderStats* st = nullptr) {
+  const Topology t = build_topology(m);
+  RenderStats local;
+  return render_zsweep(m, t, rs, st ? st : &local);
+}
+
+// Constant density over a convex box: alpha = 1 - exp(-tau·L) per pixel,
+// colour = c·alpha (premultiplied), L the chord of the pixel's ray.
+void check_constant_box(Projection proj, uint32_t W, uint32_t H, bool single = false) {
+  const glm::dvec3 lo{-1.0, -0.7, -0.5}, hi{1.0, 0.7, 0.5};
+  const TetMesh m = box_mesh({6, 5, 4}, lo, hi, [](const glm::dvec3&) { return 1.0; });
+  const double a = 0.3, unit = 0.8;
+  const double c[3] = {0.2, 0.5, 0.9};
+  RenderSettings rs = settings(W, H, proj, TransferFunction({{0, c[0], c[1], c[2]}}, {{0, a}}, unit));
+  rs.single_precision = single;
+  RenderStats st;
+  const Image img = render(m, rs, &st);
+  const double tau = -std::log(1 - a) / unit;
+  double worst = 0;
+  size_t covered = 0;
+  for (uint32_t j = 0; j < H; ++j)
+    for (uint32_t i = 0; i < W; ++i) {
+      glm::dvec3 o, d;
+      spec_ray(rs.camera, W, H, int(i), int(j), &o, &d);
+      const double L = box_chord(o, d, lo, hi);
+      const double alpha = 1 - std::exp(-tau * L);
+      const float* px = img.at(i, j);
+      worst = std::max(worst, std::abs(px[3] - alpha));
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(px[k] - c[k] * alpha));
+      covered += L > 0;
+    }
+  EXPECT_LE(worst, 2e-3);
+  EXPECT_LE(worst, 1e-5) << "closed form should hold to float precision";
+  EXPECT_GT(covered, W * H / 10);  // the box fills a good part of the image
+  EXPECT_EQ(st.rendered_pixels, covered);
+  EXPECT_EQ(st.pixel_hits, st.fragments);
+}
+
+TEST(ZSweep, ConstantDensityBoxOrthographicMatchesClosedForm) {
+  check_constant_box(Projection::Orthographic, 96, 64);
+}
+TEST(ZSweep, ConstantDensityBoxPerspectiveMatchesClosedForm) {
+  check_constant_box(Projection::Perspective, 64, 96);
+}
+TEST(ZSweep, ConstantDensityBoxSinglePrecisionMatchesClosedForm) {
+  check_constant_box(Projection::Orthographic, 96, 64, true);
+  check_constant_box(Projection::Perspective, 64, 96, true);
+}
+
+TEST(ZSweep, LinearScalarMatchesQuadratureWithExactIntegrator) {
+  const glm::dvec3 lo{-1.0, -0.8, -0.6}, hi{1.0, 0.8, 0.6};
+  auto field = [](const glm::dvec3& p) { return 0.5 + 0.22 * p.x + 0.15 * p.y - 0.2 * p.z; };
+  const TetMesh m = box_mesh({1, 1, 3}, lo, hi, field);
+  TransferFunction tf({{0.0, 0.1, 0.1, 0.9}, {0.35, 0.1, 0.9, 0.3}, {0.55, 0.9, 0.9, 0.1}, {1.0, 0.9, 0.1, 0.1}},
+                      {{0.0, 0.0}, {0.3, 0.05}, {0.45, 0.9}, {0.55, 0.1}, {0.7, 0.6}, {1.0, 0.2}}, 0.5);
+  const uint32_t W = 80, H = 60;
+  double err[3] = {0, 0, 0};
+  int which = 0;
+  for (Integrator kind : {Integrator::Exact, Integrator::Linear, Integrator::Preintegrated}) {
+    RenderSettings rs = settings(W, H, Projection::Orthographic, tf);
+    rs.integrator = kind;
+    const Image img = render(m, rs);
+    for (uint32_t j = 0; j < H; j += 3)
+      for (uint32_t i = 0; i < W; i += 3) {
+        glm::dvec3 o, d;
+        spec_ray(rs.camera, W, H, int(i), int(j), &o, &d);
+        double ref[4];
+        test::march_box_ray(tf, field, o, d, lo, hi, ref);
+        for (int k = 0; k < 4; ++k) err[which] = std::max(err[which], std::abs(img.at(i, j)[k] - ref[k]));
+      }
+    ++which;
+  }
+  std::printf("max abs error vs quadrature: exact %.2e, linear %.2e, preintegrated %.2e\n", err[0], err[1], err[2]);
+  EXPECT_LE(err[0], 1e-4);
+  EXPECT_GT(err[1], 10 * err[0]) << "the linear integrator ignores TF breakpoints inside a cell";
+  EXPECT_GT(err[2], 10 * err[0]);
+}
+
+// The single-precision kernel on the same scene: within its bound
+// (docs/accuracy.md: ~1e-6 per segment, a few segments per pixel) of the
+// double kernel's image, which is not the same image bit for bit.
+TEST(ZSweep, SinglePrecisionStaysWithinItsBoundOfDouble) {
+  const glm::dvec3 lo{-1.0, -0.8, -0.6}, hi{1.0, 0.8, 0.6};
+  auto field = [](const glm::dvec3& p) { return 0.5 + 0.22 * p.x + 0.15 * p.y - 0.2 * p.z; };
+  const TetMesh m = box_mesh({3, 3, 3}, lo, hi, field);
+  TransferFunction tf({{0.0, 0.1, 0.1, 0.9}, {0.35, 0.1, 0.9, 0.3}, {0.55, 0.9, 0.9, 0.1}, {1.0, 0.9, 0.1, 0.1}},
+                      {{0.0, 0.0}, {0.3, 0.05}, {0.45, 0.9}, {0.55, 0.1}, {0.7, 0.6}, {1.0, 0.2}}, 0.5);
+  RenderSettings rs = settings(96, 72, Projection::Orthographic, tf);
+  RenderStats sd, ss;
+  const Image dbl = render(m, rs, &sd);
+  rs.single_precision = true;
+  const Image sgl = render(m, rs, &ss);
+  double worst = 0;
+  for (uint32_t j = 0; j < 72; ++j)
+    for (uint32_t i = 0; i < 96; ++i)
+      for (int k = 0; k < 4; ++k) worst = std::max(worst, double(std::abs(dbl.at(i, j)[k] - sgl.at(i, j)[k])));
+  std::printf("single against double: max difference %.2e over %llu segments\n", worst,
+              (unsigned long long)ss.segments);
+  EXPECT_EQ(sd.segments, ss.segments);  // the same sweep; only the light differs
+  EXPECT_GT(worst, 0.0) << "the single-precision kernel did not run";
+  EXPECT_LE(worst, 1e-5);
+}
+
+// Two boxes one behind the other (gap between), and a box with a cavity:
+// light only along the mesh, never across a gap.
+TEST(ZSweep, NonConvexGapsStayDark) {
+  const double a = 0.4, unit = 1.0, tau = -std::log(1 - a) / unit;
+  auto one = [](const glm::dvec3&) { return 1.0; };
+  const glm::dvec3 alo{-1, -1, -2}, ahi{1, 1, -1}, blo{-1, -1, 1}, bhi{1, 1, 2};
+  TetMesh two = box_mesh({3, 3, 2}, alo, ahi, one);
+  test::append_mesh(two, box_mesh({3, 3, 2}, blo, bhi, one));
+  // A 3x3x3 block with its centre cell removed: a closed cavity.
+  const glm::dvec3 clo{-1.5, -1.5, -1.5}, chi{1.5, 1.5, 1.5}, ilo{-0.5, -0.5, -0.5}, ihi{0.5, 0.5, 0.5};
+  const TetMesh cavity = box_mesh({3, 3, 3}, clo, chi, one, [](int i, int j, int k) { return !(i == 1 && j == 1 && k == 1); });
+
+  for (Projection proj : {Projection::Orthographic, Projection::Perspective}) {
+    const uint32_t W = 72, H = 56;
+    RenderSettings rs = settings(W, H, proj, TransferFunction({{0, 1, 1, 1}}, {{0, a}}, unit));
+    rs.camera.eye = {1.3, 0.9, 7.0};
+    rs.camera.target = {0, 0, 0};
+    rs.camera.height = 4.5;
+    const Image img_two = render(two, rs);
+    const Image img_cav = render(cavity, rs);
+    double worst_two = 0, worst_cav = 0;
+    for (uint32_t j = 0; j < H; ++j)
+      for (uint32_t i = 0; i < W; ++i) {
+        glm::dvec3 o, d;
+        spec_ray(rs.camera, W, H, int(i), int(j), &o, &d);
+        const double L2 = box_chord(o, d, alo, ahi) + box_chord(o, d, blo, bhi);
+        const double Lc = box_chord(o, d, clo, chi) - box_chord(o, d, ilo, ihi);
+        worst_two = std::max(worst_two, std::abs(img_two.at(i, j)[3] - (1 - std::exp(-tau * L2))));
+        worst_cav = std::max(worst_cav, std::abs(img_cav.at(i, j)[3] - (1 - std::exp(-tau * Lc))));
+      }
+    EXPECT_LE(worst_two, 1e-5) << int(proj);
+    EXPECT_LE(worst_cav, 1e-5) << int(proj);
+  }
+}
+
+TEST(ZSweep, InvisibleTetsAreCulledExactly) {
+  // Scalar 0 (zero opacity) on one half, visible on the other: culling the
+  // invisible half changes nothing in the image, only the counts.
+  const glm::dvec3 lo{-1, -1, -1}, hi{1, 1, 1};
+  auto step = [](const glm::dvec3& p) { return p.x < 0.01 ? 0.0 : 1.0; };
+  const TetMesh m = box_mesh({4, 4, 4}, lo, hi, step);
+  TransferFunction tf({{0, 1, 0.5, 0.2}}, {{0.0, 0.0}, {0.5, 0.0}, {1.0, 0.5}}, 1.0);
+  RenderStats st;
+  const Image img = render(m, settings(48, 48, Projection::Orthographic, tf), &st);
+  EXPECT_GT(st.tets_invisible, 0u);
+  EXPECT_GT(st.faces_culled, 0u);
+  // Reference: the same scene with the invisible tets removed from the mesh.
+  TetMesh vis = m;
+  vis.tets.clear();
+  for (const Tet& t : m.tets) {
+    double hi_s = 0;
+    for (uint32_t v : t) hi_s = std::max(hi_s, m.scalars[v]);
+    if (hi_s > 0.5) vis.tets.push_back(t);
+  }
+  const Image ref = render(vis, settings(48, 48, Projection::Orthographic, tf));
+  for (size_t k = 0; k < img.rgba.size(); ++k) ASSERT_EQ(img.rgba[k], ref.rgba[k]) << k;
+}
+
+TEST(ZSweep, MaxListLengthAndBudgetDoNotChangeTheImage) {
+  const glm::dvec3 lo{-1, -1, -1}, hi{1, 1, 1};
+  auto field = [](const glm::dvec3& p) { return 0.5 + 0.3 * p.x * p.y + 0.2 * p.z; };
+  // Long cells: each swept vertex projects faces reaching far behind the
+  // sweep plane, so pixels hold more pending fragments than their records'
+  // inline slots and the overflow pool (the budgeted part) is used.
+  const TetMesh m = box_mesh({1, 1, 3}, lo, hi, field);
+  TransferFunction tf({{0, 0.9, 0.3, 0.1}, {1, 0.1, 0.4, 0.9}}, {{0.0, 0.1}, {1.0, 0.7}}, 0.7);
+  RenderSettings rs = settings(64, 64, Projection::Perspective, tf);
+  RenderStats s0, s1, s2;
+  const Image a = render(m, rs, &s0);
+  ASSERT_GT(s0.peak_overflow_fragments, 0u) << "the scene must overflow the inline slots";
+  EXPECT_GT(s0.peak_fragments, s0.peak_overflow_fragments);
+  rs.max_list_length = 2;
+  const Image b = render(m, rs, &s1);
+  rs.max_list_length = 0;
+  // The smallest budget that still renders (the pending fragments that are
+  // not yet final must fit): below the unbounded peak, so the pool fills and
+  // final fragments are composited early to make room.
+  uint64_t blo = 1 << 16, bhi = 1 << 24;  // blo fails, bhi is ample
+  Image c;
+  while (bhi - blo > 16) {
+    const uint64_t mid = (blo + bhi) / 2;
+    rs.memory_budget_bytes = mid;
+    try {
+      RenderStats st;
+      Image img = render(m, rs, &st);
+      bhi = mid;
+      c = std::move(img);
+      s2 = st;
+    } catch (const std::runtime_error&) {
+      blo = mid;
+    }
+  }
+  ASSERT_FALSE(c.rgba.empty());
+  EXPECT_GT(s1.forced_composites, 0u);
+  EXPECT_GT(s2.budget_flushes, 0u);
+  EXPECT_LE(s2.peak_overflow_fragments, s2.fragment_capacity);
+  EXPECT_LT(s2.fragment_capacity, s0.peak_overflow_fragments);
+  for (size_t k = 0; k < a.rgba.size(); ++k) {
+    ASSERT_EQ(a.rgba[k], b.rgba[k]) << k;
+    ASSERT_EQ(a.rgba[k], c.rgba[k]) << k;
+  }
+  rs.memory_budget_bytes = 1000;
+  EXPECT_THROW(render(m, rs), std::runtime_error);
+}
+
+TEST(ZSweep, EarlyTerminationStaysWithinItsBound) {
+  const glm::dvec3 lo{-1, -1, -1}, hi{1, 1, 1};
+  auto field = [](const glm::dvec3& p) { return 0.5 + 0.4 * p.z; };
+  const TetMesh m = box_mesh({1, 1, 3}, lo, hi, field);
+  TransferFunction tf({{0, 1, 1, 0.2}, {1, 0.2, 0.3, 1}}, {{0.0, 0.6}, {1.0, 0.95}}, 0.3);
+  RenderSettings rs = settings(48, 40, Projection::Orthographic, tf);
+  const Image full = render(m, rs);
+  for (double t : {1.0, 4.0, 16.0}) {
+    rs.early_termination = t;
+    RenderStats st;
+    const Image et = render(m, rs, &st);
+    EXPECT_GT(st.early_terminated_pixels, 0u) << t;
+    double worst = 0;
+    for (size_t k = 0; k < full.rgba.size(); ++k) worst = std::max(worst, double(std::abs(full.rgba[k] - et.rgba[k])));
+    EXPECT_LE(worst * 255.0, t / 2 + 1e-3) << t;
+  }
+}
+
+}  // namespace
+}  // namespace zs
+
+namespace zs {
+namespace {
+
+TEST(ZSweep, ThreadsGiveBitIdenticalImages) {
+  const glm::dvec3 lo{-1, -1, -1}, hi{1, 1, 1};
+  auto field = [](const glm::dvec3& p) { return 0.5 + 0.3 * p.x * p.y + 0.2 * p.z; };
+  const TetMesh m = test::box_mesh({5, 6, 4}, lo, hi, field);
+  TransferFunction tf({{0, 0.9, 0.3, 0.1}, {1, 0.1, 0.4, 0.9}}, {{0.0, 0.1}, {0.4, 0.8}, {1.0, 0.3}}, 0.7);
+  RenderSettings rs;
+  rs.width = 70;
+  rs.height = 45;
+  rs.camera.projection = Projection::Perspective;
+  rs.camera.eye = {2, 2.5, 3};
+  rs.tf = tf;
+  const Topology t = build_topology(m);
+  RenderStats s1, s3;
+  const Image one = render_zsweep(m, t, rs, &s1);
+  rs.threads = 3;
+  const Image three = render_zsweep(m, t, rs, &s3);
+  EXPECT_EQ(s1.pixel_hits, s3.pixel_hits);
+  EXPECT_EQ(s1.rendered_pixels, s3.rendered_pixels);
+  ASSERT_EQ(one.rgba.size(), three.rgba.size());
+  for (size_t k = 0; k < one.rgba.size(); ++k) ASSERT_EQ(one.rgba[k], three.rgba[k]) << k;
+}
+
+// Tiles sweep their own bins in the global sweep order: every pixel sees the
+// same fragments in the same order, so the image does not depend on the tile
+// size (one tile, tiles smaller than a face, odd sizes), for every scan
+// strategy, on a mesh with faces crossing many tiles and a near-plane cut.
+TEST(ZSweep, TileSizeGivesBitIdenticalImages) {
+  const glm::dvec3 lo{-1, -1, -1}, hi{1, 1, 1};
+  auto field = [](const glm::dvec3& p) { return 0.5 + 0.3 * p.x * p.y + 0.2 * p.z; };
+  const TetMesh m = test::box_mesh({4, 3, 5}, lo, hi, field);
+  const Topology t = build_topology(m);
+  TransferFunction tf({{0, 0.9, 0.3, 0.1}, {1, 0.1, 0.4, 0.9}}, {{0.0, 0.1}, {0.4, 0.8}, {1.0, 0.3}}, 0.7);
+  for (bool inside : {false, true}) {
+    RenderSettings rs;
+    rs.width = 83;
+    rs.height = 61;
+    rs.camera.projection = Projection::Perspective;
+    rs.camera.eye = inside ? glm::dvec3{0.2, 0.1, 0.3} : glm::dvec3{2, 2.5, 3};
+    rs.camera.fov_y = 70;
+    rs.tf = tf;
+    for (ScanStrategy scan : {ScanStrategy::BBox, ScanStrategy::Span, ScanStrategy::BConvert}) {
+      rs.scan = scan;
+      rs.tile_size = 1000;
+      RenderStats s0;
+      const Image whole = render_zsweep(m, t, rs, &s0);
+      EXPECT_EQ(s0.tiles, 1u);
+      EXPECT_GT(s0.rendered_pixels, 500u);
+      for (uint32_t tile : {1u, 7u, 16u, 64u}) {
+        rs.tile_size = tile;
+        rs.threads = tile == 7 ? 2 : 1;
+        RenderStats st;
+        const Image img = render_zsweep(m, t, rs, &st);
+        EXPECT_EQ(st.tiles, uint64_t((83 + tile - 1) / tile) * ((61 + tile - 1) / tile));
+        EXPECT_EQ(st.fragments, s0.fragments) << tile;
+        EXPECT_EQ(st.segments, s0.segments) << tile;
+        for (size_t k = 0; k < whole.rgba.size(); ++k)
+          ASSERT_EQ(whole.rgba[k], img.rgba[k]) << "tile " << tile << " scan " << to_string(scan) << " at " << k;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace zs
+
+namespace zs {
+namespace {
+
+// The eye inside the mesh (perspective) and the eye plane through it
+// (orthographic): only the part of each ray at positive distance counts.
+TEST(ZSweep, EyeInsideMeshIntegratesFromTheEye) {
+  const glm::dvec3 lo{-1.0, -0.8, -1.2}, hi{1.1, 0.9, 1.0};
+  const TetMesh m = test::box_mesh({5, 4, 6}, lo, hi, [](const glm::dvec3&) { return 1.0; });
+  const double a = 0.35, unit = 1.0, tau = -std::log(1 - a) / unit;
+  for (Projection proj : {Projection::Perspective, Projection::Orthographic}) {
+    RenderSettings rs;
+    rs.width = 64;
+    rs.height = 48;
+    rs.camera.projection = proj;
+    rs.camera.eye = {0.13, -0.07, 0.21};
+    rs.camera.target = {0.5, 0.2, -1.0};
+    rs.camera.up = {0, 1, 0};
+    rs.camera.fov_y = 70;
+    rs.camera.height = 1.3;
+    rs.tf = TransferFunction({{0, 1, 1, 1}}, {{0, a}}, unit);
+    RenderStats st;
+    const Image img = render_zsweep(m, build_topology(m), rs, &st);
+    EXPECT_GT(st.faces_clipped, 0u);
+    double worst = 0;
+    for (uint32_t j = 0; j < rs.height; ++j)
+      for (uint32_t i = 0; i < rs.width; ++i) {
+        glm::dvec3 o, d;
+        spec_ray(rs.camera, rs.width, rs.height, int(i), int(j), &o, &d);
+        const double L = box_chord(o, d, lo, hi);  // from t = 0: the eye is inside
+        worst = std::max(worst, std::abs(img.at(i, j)[3] - (1 - std::exp(-tau * L))));
+      }
+    EXPECT_LE(worst, 1e-5) << int(proj);
+  }
+}
+
+}  // namespace
+}  // namespace zs
