@@ -4,7 +4,7 @@
     rgba = zsweep.render({"mesh": {"points": P, "tets": T, "scalar": S}}, width=256, height=256)
 
 See docs/python.md. `render` takes a scene as the JSON contract describes it
-(docs/scenes.md), as a dict or a path; wherever the scene names a file it may
+(docs/scene.md), as a dict or a path; wherever the scene names a file it may
 hold the data instead: numpy arrays, a vtkUnstructuredGrid or a vtkPolyData.
 """
 import json

@@ -23,7 +23,7 @@ namespace zs {
 namespace {
 
 // Rotation (0, 0, 0) as in the seed: orthographic down -z, y up, the mesh's
-// x/y extent filling the image with one common scale (digest §3.1).
+// x/y extent filling the image with one common scale (B-Convert digest §3.1).
 Camera seed_camera(const TetMesh& m, uint32_t w, uint32_t h) {
   const Bounds b = bounds_of(m);
   Camera c;

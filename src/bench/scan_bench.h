@@ -1,4 +1,4 @@
-// `zsweep bench scan`: the seed's experiment (digest §7-9) on this machine —
+// `zsweep bench scan`: the seed's experiment (B-Convert digest §7–9) on this machine —
 // every strategy and B-Convert variant, per mesh and resolution, whole ZSweep
 // renders with one thread, with times split into list generation (per-face
 // set-up) and scan conversion (the pixel loop), hit/miss counts, pixels the

@@ -1,4 +1,4 @@
-// The ambient-occlusion "atmosphere" (sphere digest §2.4.4): directions from
+// The ambient-occlusion "atmosphere" (spheres digest §2.4.4): directions from
 // repeated subdivision of an octahedron, every edge split at its midpoint
 // and the new vertex projected onto the unit sphere. Level s holds
 // 2 + 4^(s+1) directions (6, 18, 66, 258, 1026, ...).

@@ -1,12 +1,14 @@
-// The n-SM pass (digest §2.6.5–2.6.6, "pass 2"): one image-space pass over a
-// shadow map that gives every texel n depths, its own z_c first.
+// The n-SM pass (shadow-maps digest §2.6.5–2.6.6, "pass 2"): one
+// image-space pass over a shadow map that gives every texel n depths, its
+// own z_c first.
 //   n = 1: z_c (the classic map);
 //   n = 2: z_c and the maximum (or minimum, `select`) of its 3×3 neighbourhood;
 //   n = 3: z_c, the maximum and the minimum of the 3×3 neighbourhood;
 //   n = 4..9: z_c and n − 1 fixed neighbours spread evenly around it: ring
 //             position round(8i/(n − 1)) of the 8 neighbours counter-clockwise
-//             from +x (n = 4: at 0°, 135°, 225°, close to the digest's 120°
-//             spacing; n = 5: the four axis neighbours; n = 9: all eight).
+//             from +x (n = 4: at 0°, 135°, 225°, close to the 120° spacing
+//             the digest infers, §2.6.5; n = 5: the four axis neighbours;
+//             n = 9: all eight).
 // Borders clamp to the edge. Cost: size² × q reads (q = 9, or n − 1 + 1).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The conservative depth map of occlusion culling (digest §2.2.3–2.2.4): each
+// The conservative depth map of occlusion culling (spheres digest §2.2.3–2.2.4): each
 // occluding sphere is drawn as the disc through its centre, perpendicular to
 // the view axis, at its centre's depth. That disc lies inside the sphere, so
 // along any ray through it the sphere's front surface is nearer than the
@@ -14,7 +14,7 @@
 // pixel block (s chosen so the map is at most 1024 texels a side), written
 // only where a disc covers every pixel centre of the block. A one-level
 // max-depth pyramid over it answers "is this screen box hidden behind z?"
-// with at most 2×2 reads (the per-sphere test of §2.2.4).
+// with at most 2×2 reads (the per-sphere test of the spheres digest §2.2.4).
 #pragma once
 
 #include <cmath>

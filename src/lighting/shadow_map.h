@@ -1,9 +1,9 @@
-// A shadow map (digest §2.2) and its multiple-depth form, the n-SM (§2.6):
-// the depths of the casters nearest to a light, rendered by the raster core's
-// z-buffer over the map's own tiles, then one image-space pass that gives each
-// texel n depths. Shared by the surface renderer and (later) the sphere
-// renderer's ambient occlusion; it knows triangles, lights and world points,
-// nothing of either renderer.
+// A shadow map (shadow-maps digest §2.2) and its multiple-depth form, the
+// n-SM (§2.6): the depths of the casters nearest to a light, rendered by the
+// raster core's z-buffer over the map's own tiles, then one image-space pass
+// that gives each texel n depths. Shared by the surface renderer and the
+// sphere renderer's ambient occlusion (sphere_map.h); it knows triangles,
+// lights and world points, nothing of either renderer.
 //
 // Frame: directional lights get an orthographic map whose square covers the
 // receivers in view (fit_directional), spot lights a perspective map of the
@@ -11,8 +11,9 @@
 // depth in world units (orthographic: along the light direction; spot:
 // camera-space z), stored as float rounded upwards.
 //
-// Test (the composite test of §2.6.4, PCF(k,n) of §2.6.4 with a box kernel):
-// a point p at light depth d is lit by a stored depth z when
+// Test (the shadow-maps digest's composite test, §2.6.2 and §2.6.4, and its
+// PCF(k,n), §2.6.4, with a box kernel): a point p at light depth d is lit by
+// a stored depth z when
 //   d − bias_total ≤ z,   bias_total = bias + slope_bias·tanθ·w·(1 + R) + 2^-20·|d|
 // with θ the angle between the surface normal and the light, tanθ clamped to
 // 10, w the world size of a texel at p, R the farthest texel the test reads

@@ -7,9 +7,10 @@
 
 namespace zs {
 
-// Which extra depth a 2-SM keeps from a texel's 3×3 neighbourhood (digest
-// §2.6.5): the maximum (the half-tone band inside the classic shadow; cannot
-// add self-shadowing) or the minimum (the band outside it).
+// Which extra depth a 2-SM keeps from a texel's 3×3 neighbourhood
+// (shadow-maps digest §2.6.5): the maximum (the half-tone band inside the
+// classic shadow; cannot add self-shadowing) or the minimum (the band outside
+// it).
 enum class DepthSelect { Max, Min };
 // `map`: shadow maps; `exact`: a shadow ray per pixel and light (Embree).
 enum class ShadowMode { Map, Exact };

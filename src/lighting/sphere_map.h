@@ -1,5 +1,5 @@
 // Orthographic shadow maps of sphere sets, one per ambient-occlusion
-// direction (sphere digest §2.4.5), and the AO they give a point (§2.4.6).
+// direction (spheres digest §2.4.5), and the AO they give a point (§2.4.6).
 //
 // A map looks along −ω (light arriving from ω) and is fitted to the set's
 // bounding box rotated into that frame, so it covers the whole set whatever
@@ -44,7 +44,7 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
                            int threads, SphereMapStats* stats = nullptr, const std::vector<float>* alpha = nullptr,
                            TransmittanceLists* translucent = nullptr, SphereMapScratch* scratch = nullptr);
 
-// Every direction's map for a sphere set: the AO preprocessing (§2.4.5),
+// Every direction's map for a sphere set: the AO preprocessing (spheres digest §2.4.5),
 // built once and reused by every frame of a static set. Maps are built in
 // parallel over directions (each one by one thread) when there are at least
 // as many directions as threads, else one after another over tiles; the maps

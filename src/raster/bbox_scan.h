@@ -1,4 +1,4 @@
-// Strategy 1: the bounding-box scan of the original ZSweep (digest §3.3):
+// Strategy 1: the bounding-box scan of the original ZSweep (B-Convert digest §3.3):
 // test every pixel centre in the face's screen bounding box with the
 // point-in-triangle test, rows outermost as the seed's baseline.
 #pragma once

@@ -1,4 +1,4 @@
-// Strategy 2: B-Convert (digest §4): integer Bresenham edge lists compacted
+// Strategy 2: B-Convert (B-Convert digest §4): integer Bresenham edge lists compacted
 // into per-row candidate spans, then the same point-in-triangle test as the
 // bounding box on the compact list only. Reproduces the seed's behaviour,
 // including its missing ("ausente") pixels.

@@ -1,6 +1,7 @@
 // Light from one ray segment inside a cell, for the absorption-plus-emission
-// model (digest Eq. 2.7; scene spec): extinction tau(s) = -ln(1 - a(s))/unit,
-// emission c(s)·tau(s), with the scalar s linear along the segment.
+// model (B-Convert digest §1.3, Eq. 2.7; scene spec): extinction
+// tau(s) = -ln(1 - a(s))/unit, emission c(s)·tau(s), with the scalar s linear
+// along the segment.
 // A segment returns its premultiplied colour I (as seen at its front end) and
 // its transmittance T; front-to-back: acc += acc_T·I, acc_T *= T.
 #pragma once

@@ -1,7 +1,7 @@
 // Face topology of a tet mesh, built once: the unique triangular faces, the
 // one or two tets on each, the boundary flag, and each vertex's use set (the
 // unique faces incident to it — what the ZSweep sweep projects when it passes
-// the vertex; digest §1.1).
+// the vertex; B-Convert digest §1.1).
 #pragma once
 
 #include <array>

@@ -6,8 +6,9 @@
 // exactly (split at transfer-function breakpoints, closed-form optical depth,
 // adaptive quadrature for colour: segment_integrator.h).
 //
-// It shares the scene, transfer-function and optics code with the ZSweep
-// engine, and nothing of its sweep, raster, fragment lists or compositor.
+// It shares the camera, the transfer function and the segment optics (base/)
+// with the ZSweep engine, and hands back the raster core's Image; nothing of
+// the engine's sweep, scan conversion, fragment lists or compositor.
 #pragma once
 
 #include <cstdint>

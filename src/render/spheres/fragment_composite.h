@@ -1,7 +1,8 @@
-// Compositing translucent sphere fragments (digest §2.3): the order of
-// fragments along a ray, front-to-back "under" compositing of premultiplied
-// colours (Eq. 4.1), the incomplete-image stop (Eq. 4.2), back-to-front
-// compositing for dual peeling, and Meshkin's weighted sum.
+// Compositing translucent sphere fragments (spheres digest §2.3): the order
+// of fragments along a ray, front-to-back "under" compositing of
+// premultiplied colours (Eq. 4.1, §2.3.4), the incomplete-image stop
+// (Eq. 4.2, §2.3.7), back-to-front compositing for dual peeling, and
+// Meshkin's weighted sum.
 //
 // Every mode composites with these functions, in this order of operations,
 // so `peel` run to completion gives `sorted`'s image bit for bit.
@@ -59,8 +60,9 @@ inline bool opaque_now(const double acc[4]) { return acc[3] == 1.0; }
 // colours summed, alpha included) and the background weighted by
 // 1 − Σ α_i, each channel clamped to [0, 1]. Exact for one fragment; where
 // Σ α > 1 the background weight goes negative and overlaps saturate (the
-// seed's Figure 14). The digest's printed formula (W + X − W·X_A + W·Z_A +
-// W·Y_A·Z_A) gives 2W + C·α for one fragment, so it is not the one used.
+// seed's Figure 14, spheres digest §2.3.6). The digest's printed formula
+// (W + X − W·X_A + W·Z_A + W·Y_A·Z_A) gives 2W + C·α for one fragment, so it
+// is not the one used.
 inline void weighted_sum(const double x[4], const double w[4], double out[4]) {
   const double k = 1.0 - x[3];
   for (int i = 0; i < 4; ++i) out[i] = std::clamp(x[i] + w[i] * k, 0.0, 1.0);

@@ -1,4 +1,4 @@
-// The seed's approximate translucency modes on one tile (digest §2.3.4–2.3.8):
+// The seed's approximate translucency modes on one tile (spheres digest §2.3.4–2.3.8):
 // front depth peeling, dual depth peeling and Meshkin's weighted sum, each
 // over an opaque background drawn once (translucent_tile.h).
 #include <algorithm>

@@ -1,5 +1,5 @@
 // The sphere renderer's ambient occlusion (docs/spheres.md, "Ambient
-// occlusion"; digest §2.4): the maps of a set for its settings, their memory
+// occlusion"; spheres digest §2.4): the maps of a set for its settings, their memory
 // bounds, and the AO of a tile's visible points, from the maps held or from
 // the sums that batches of maps leave per image pixel.
 #pragma once
@@ -33,7 +33,7 @@ std::shared_ptr<const SphereAoMaps> sphere_ao_maps(const SphereSet& s, const std
 uint64_t sphere_ao_map_bytes_bound(const SphereRenderSettings& rs);
 uint64_t sphere_ao_bytes_bound(const SphereRenderSettings& rs);
 // Batches (the seed's several passes when the maps outnumber the texture
-// units, §2.4.6): per frame, the image's AO sums (this many bytes), and as
+// units, spheres digest §2.4.6): per frame, the image's AO sums (this many bytes), and as
 // many maps at once as the rest of the budget holds after `held` bytes
 // (alpha occluders: at most one per thread, their lists checked as built).
 // Throws, in one line, when even one map does not fit, or for a translucent

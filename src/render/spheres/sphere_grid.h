@@ -1,4 +1,4 @@
-// The regular cell grid over a sphere set (digest §2.2.1): built once per
+// The regular cell grid over a sphere set (spheres digest §2.2.1): built once per
 // set (the data are static), reused by every frame's culling. A sphere
 // belongs to the cell holding its centre; a cell's box is the box of its
 // spheres, radii included, so it may overlap its neighbours.
@@ -35,7 +35,7 @@ struct SphereGrid {
 SphereGrid build_sphere_grid(const SphereSet& s, uint32_t n);
 
 // The grid resolution `render.grid: "auto"` takes for `count` spheres: about
-// 800 spheres a cell (cbrt(count / 800)), at least 9 (the digest's grid) and
+// 800 spheres a cell (cbrt(count / 800)), at least 9 (the spheres digest's 9³, §2.2.1) and
 // at most 64. Finer cells let occlusion culling drop more of a dense set
 // before its spheres are touched one by one (docs/spheres-bench.md: C4 at
 // 32³ takes half the time of 9³); a cell costs a box test per frame.

@@ -1,4 +1,4 @@
-// The sphere-sprite renderer (digest §2.1–2.2): every sphere is an exact
+// The sphere-sprite renderer (spheres digest §2.1–2.2): every sphere is an exact
 // impostor. Opaque here; the translucent modes resolve tiles with
 // translucent_tile.h on the same visibility and bins. Its silhouette is scanned as one exact conic span per row
 // (raster/sphere_span.h); each covered pixel's depth is the exact entry of

@@ -19,7 +19,7 @@ enum class SphereMode { Opaque, Sorted, Peel, DualPeel, Weighted };
 const char* to_string(SphereMode m);
 bool parse_sphere_mode(const std::string& s, SphereMode* out);
 
-// Ambient occlusion (sphere digest §2.4; docs/spheres.md): one orthographic
+// Ambient occlusion (spheres digest §2.4; docs/spheres.md): one orthographic
 // map per direction, AO per visible pixel. Off when directions is 0.
 struct SphereAo {
   uint32_t directions = 0;  // 6, 18, 66, 258, ... (lighting/ao_directions.h)
@@ -40,7 +40,7 @@ struct SphereRenderSettings : FrameSettings {
   SphereMode mode = SphereMode::Opaque;
   // Translucent modes: one fragment per sphere and ray (the visible surface)
   // instead of two (entry and exit); the incomplete-image stop once
-  // 1 − alpha <= tolerance / 510 (0: never; digest Eq. 4.2); the layer cap
+  // 1 − alpha <= tolerance / 510 (0: never; spheres digest §2.3.7, Eq. 4.2); the layer cap
   // of peel and dual_peel (0: none).
   bool front_surfaces_only = false;
   double tolerance = 8;

@@ -1,4 +1,4 @@
-// Which spheres a frame draws (digest §2.2): view-volume culling of the grid's
+// Which spheres a frame draws (spheres digest §2.2): view-volume culling of the grid's
 // cells (p-vertex test, Algorithm 3.1), front-to-back occlusion culling of the
 // surviving cells against the conservative centre-disc depth map
 // (occlusion_map.h), and the one-level max-depth pyramid test per sphere.

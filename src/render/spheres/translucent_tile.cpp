@@ -50,7 +50,7 @@ void TranslucentTile::color(size_t p, const FragKey& k, double c[4]) const {
   const glm::dvec3 v = view.perspective() ? glm::normalize(glm::dvec3(-P.x, -P.y, P.z)) : glm::dvec3(0, 0, 1);
   const glm::vec4& col = (*f_->colors)[id];
   glm::dvec3 rgb = shade(f_->rs->shading, glm::dvec3(col.r, col.g, col.b), n, v);
-  if (f_->ao) rgb *= fragment_ao(p, k);  // colour = AO × shaded colour (digest §2.4.6)
+  if (f_->ao) rgb *= fragment_ao(p, k);  // colour = AO × shaded colour (spheres digest §2.4.6)
   const double al = alpha(id);
   c[0] = rgb.r * al, c[1] = rgb.g * al, c[2] = rgb.b * al, c[3] = al;
 }

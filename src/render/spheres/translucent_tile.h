@@ -1,4 +1,4 @@
-// One tile of a translucent sphere render (digest §2.3; docs/spheres.md,
+// One tile of a translucent sphere render (spheres digest §2.3; docs/spheres.md,
 // "Translucency"). A translucent sphere is a shell: each ray crossing it
 // gives two fragments (entry and exit; with `surfaces: front` only the
 // visible one), composited front to back with the sphere's colour, shaded at

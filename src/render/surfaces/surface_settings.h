@@ -17,7 +17,7 @@ namespace zs {
 // The frame (size, background, camera, threads, tiles, budget) and the
 // surfaces' own: culling, colours, lights, shading and shadows.
 struct SurfaceRenderSettings : FrameSettings {
-  bool cull_back = true;   // back-face culling (default on, seed 003)
+  bool cull_back = true;   // back-face culling (default on, as in seed 003's slides)
   bool cull_view = true;   // view-volume culling
   std::vector<glm::dvec3> colors;  // per surface id (mesh.surface)
   std::vector<Light> lights;

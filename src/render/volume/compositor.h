@@ -1,4 +1,4 @@
-// Delayed compositing (digest §1.1 stage 3): consumes a pixel's fragments in
+// Delayed compositing (B-Convert digest §1.1, stage 3): consumes a pixel's fragments in
 // depth order and integrates each segment between consecutive fragments that
 // lies inside the (visible) mesh, front to back.
 //

@@ -1,4 +1,4 @@
-// Per-pixel depth-sorted fragment lists (digest §1.1 stage 2). The sweep
+// Per-pixel depth-sorted fragment lists (B-Convert digest §1.1, stage 2). The sweep
 // composites a pixel's final fragments whenever a new one arrives there
 // (tile_sweep.h), so a pixel rarely holds more than the few faces crossing
 // the sweep plane at once (at most 3–4 on the benchmark meshes). The first

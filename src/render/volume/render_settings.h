@@ -27,7 +27,7 @@ struct RenderSettings : FrameSettings {
   bool single_precision = false;
   // Early termination threshold t in 8-bit levels: stop a pixel once its
   // transmittance is below t/510, which bounds the error by t/2 levels
-  // (seed 000's bound). 0 = off.
+  // (the spheres digest's bound, §2.3.7). 0 = off.
   double early_termination = 0;
   uint32_t max_list_length = 0;         // 0 = unlimited
   // Benchmarks: scan-convert every face but keep no fragments (no lists, no

@@ -1,4 +1,4 @@
-// The order in which the sweep projects faces (digest §1.2), computed once
+// The order in which the sweep projects faces (B-Convert digest §1.2), computed once
 // per render: vertices leave the heap by depth (ties by id) and each face is
 // projected when the first of its vertices is swept. Every tile then sweeps
 // its own faces in this global order, so each pixel receives the same

@@ -1,4 +1,4 @@
-// One tile's sweep (digest §1.2) over its bin of faces, in the global sweep
+// One tile's sweep (B-Convert digest §1.2) over its bin of faces, in the global sweep
 // order: scan-convert each face inside the tile, insert its fragments into
 // the pixel lists, and composite every fragment the sweep plane has passed —
 // at z_target events for the whole tile, and for a single pixel whenever a

@@ -1,6 +1,7 @@
 // The sweep's event list: vertices ordered by view depth in a binary min-heap
-// (digest §1.1, stage 1). A heap rather than a sort because the sweep may
-// insert events while it runs (clipping vertices, future work).
+// (B-Convert digest §1.1, stage 1). sweep_order() builds it once from every
+// event vertex (`assign`, O(n)) and pops it in order; nothing is inserted
+// while it runs (the near-plane clip adds faces, not events: near_clip.h).
 #pragma once
 
 #include <cstddef>

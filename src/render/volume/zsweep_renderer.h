@@ -1,4 +1,4 @@
-// The ZSweep engine (digest §1): sweep a plane through the vertices in depth
+// The ZSweep engine (B-Convert digest §1): sweep a plane through the vertices in depth
 // order, project the not-yet-projected faces of each swept vertex's use set
 // into per-pixel fragment lists, and composite lazily — a fragment is
 // composited once the sweep has passed it, so every fragment is final when it

@@ -1,5 +1,6 @@
-// Internal to zsweep_vtkio: routes VTK's error/warning text away from stderr
-// so failures surface as one-line FileErrors. No VTK headers here on purpose.
+// Internal to the VTK file code (built in zsweep_geometry_tets_io; the surface
+// reader in geometry/triangles/io/ uses it too): routes VTK's error/warning
+// text away from stderr so failures surface as one-line FileErrors. No VTK headers here on purpose.
 #pragma once
 
 #include <memory>
