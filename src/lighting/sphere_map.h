@@ -1,5 +1,5 @@
 // Orthographic shadow maps of sphere sets, one per ambient-occlusion
-// direction (sphere digest §2.4.5), and the AO they give a point (§2.4.6).
+// direction (spheres digest §2.4.5), and the AO they give a point (§2.4.6).
 //
 // A map looks along −ω (light arriving from ω) and is fitted to the set's
 // bounding box rotated into that frame, so it covers the whole set whatever
