@@ -39,17 +39,12 @@ struct SphereMapScratch {
   std::vector<double> floor;
 };
 
-ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii,
-                           const glm::dvec3& omega, uint32_t D, SphereDepth mode, const ShadowSettings& s,
-                           int threads, SphereMapStats* stats, const std::vector<float>* alpha,
-                           TransmittanceLists* translucent, SphereMapScratch* scratch) {
-  SphereMapScratch own;
-  SphereMapScratch& sc = scratch ? *scratch : own;
-  const auto t0 = std::chrono::steady_clock::now();
-  Light light;
-  light.type = LightType::Directional;
-  light.direction = -omega;
-  // The set's box, grown by the radii: the map covers every sphere whole.
+namespace {
+
+using Disc = SphereDisc;
+
+// The set's box, grown by the radii: the map covers every sphere whole.
+Bounds sphere_box(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii) {
   Bounds box;
   for (size_t i = 0; i < centres.size(); ++i) {
     const glm::dvec3 lo = centres[i] - glm::dvec3(radii[i]), hi = centres[i] + glm::dvec3(radii[i]);
@@ -58,202 +53,291 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
     box.hi = box.empty ? hi : glm::max(box.hi, hi);
     box.empty = false;
   }
+  return box;
+}
+
+// The map's frame: orthographic along the light, fitted to the box's
+// corners (spheres digest §2.4.5, building the map for ω).
+Camera map_frame(const Light& light, const Bounds& box, uint32_t D) {
   LightFit fit = start_fit(light);
   for (int c = 0; c < 8 && !box.empty; ++c)
     fit.add({c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z});
   double z_near = 0;
-  const Camera frame = shadow_map_frame(light, fit, box, D, &z_near);
-  const View view(frame, D, D);
-  const double texel = frame.height / D;  // world size of a texel
+  return shadow_map_frame(light, fit, box, D, &z_near);
+}
 
-  // Each sphere's screen disc, binned to the map's tiles by its texel square.
-  using Disc = SphereDisc;
-  std::vector<Disc>& discs = sc.discs;
-  discs.resize(centres.size());
-  const TileGrid grid{D, D, kMapTile, 1};
-  std::vector<uint32_t>& count = sc.count;
-  count.assign(grid.count() + 1, 0);
-  auto tiles_of = [&](const Disc& d, auto&& fn) {
+// One map's discs, binned to its tiles in a thread's scratch: what every
+// tile of the map reads.
+struct MapDiscs {
+  uint32_t D;
+  TileGrid grid;
+  double texel;  // world size of a texel
+  bool disc_mode;
+  const std::vector<float>* alpha;  // null: every sphere opaque
+  SphereMapScratch& sc;
+
+  bool opaque(uint32_t i) const { return !alpha || (*alpha)[i] >= 1.f; }
+  // The disc's nearest depth (a centre disc: its only one).
+  double nearest(const Disc& d) const { return disc_mode ? d.z + 0.0 : d.z - d.r * texel; }
+
+  // Calls fn(tile) for each tile the disc's texel square touches.
+  template <class Fn>
+  void tiles_of(const Disc& d, Fn&& fn) const {
     const int x0 = std::max(0, int(std::ceil(d.x - d.r))), x1 = std::min(int(D) - 1, int(std::floor(d.x + d.r)));
     const int y0 = std::max(0, int(std::ceil(d.y - d.r))), y1 = std::min(int(D) - 1, int(std::floor(d.y + d.r)));
     if (x0 > x1 || y0 > y1) return;
     for (int ty = y0 >> kMapTileShift; ty <= (y1 >> kMapTileShift); ++ty)
       for (int tx = x0 >> kMapTileShift; tx <= (x1 >> kMapTileShift); ++tx) fn(uint32_t(ty) * grid.cols() + tx);
-  };
-  const bool disc_mode = mode == SphereDepth::CentreDisc;
-  auto opaque = [&](uint32_t i) { return !alpha || (*alpha)[i] >= 1.f; };
+  }
+
   // A tile whose every texel centre lies inside an opaque centre disc (the
   // four corner centres do: distance to the centre is largest at a corner,
   // and its rounding is monotone too) starts at that disc's depth instead of
   // binning it: large spheres (C2's maximal balls cover ~25 tiles of a
   // 1024² map each) would otherwise be copied into, and read by, every tile
   // under them. Drawing the disc would give each texel the same minimum.
-  std::vector<double>& floor = sc.floor;
-  floor.assign(grid.count(), INFINITY);
-  auto covers = [&](const Disc& d, uint32_t t) {
+  bool covers(const Disc& d, uint32_t t) const {
     if (!disc_mode || !opaque(d.id)) return false;
     const double xa = double((t % grid.cols()) * kMapTile), ya = double((t / grid.cols()) * kMapTile);
     const double xb = std::min(xa + kMapTile, double(D)) - 1, yb = std::min(ya + kMapTile, double(D)) - 1;
     const double r2 = d.r * d.r, dxa = xa - d.x, dxb = xb - d.x, dya = ya - d.y, dyb = yb - d.y;
     return dxa * dxa + dya * dya <= r2 && dxb * dxb + dya * dya <= r2 && dxa * dxa + dyb * dyb <= r2 &&
            dxb * dxb + dyb * dyb <= r2;
-  };
-  for (size_t i = 0; i < centres.size(); ++i) {
-    const ViewPoint v = view.project(centres[i]);
-    Disc& d = discs[i];
-    d = {v.x, v.y, v.z, radii[i] / texel, uint32_t(i)};
-    if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && d.r > 0)) d.r = -1;  // not drawn
-    if (alpha && !((*alpha)[i] > 0.f)) d.r = -1;  // alpha 0 (or NaN) lets all light through
-    tiles_of(d, [&](uint32_t t) {
-      if (covers(d, t))
-        floor[t] = std::min(floor[t], d.z + 0.0);
-      else
-        ++count[t + 1];
-    });
   }
-  for (size_t t = 0; t < grid.count(); ++t) count[t + 1] += count[t];
+
+  // Each sphere's disc, the tiles it covers (their floors), and per other
+  // tile it touches, the count of discs binned there.
+  void project(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii, const View& view) {
+    std::vector<Disc>& discs = sc.discs;
+    discs.resize(centres.size());
+    std::vector<uint32_t>& count = sc.count;
+    count.assign(grid.count() + 1, 0);
+    std::vector<double>& floor = sc.floor;
+    floor.assign(grid.count(), INFINITY);
+    for (size_t i = 0; i < centres.size(); ++i) {
+      const ViewPoint v = view.project(centres[i]);
+      Disc& d = discs[i];
+      d = {v.x, v.y, v.z, radii[i] / texel, uint32_t(i)};
+      if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && d.r > 0)) d.r = -1;  // not drawn
+      if (alpha && !((*alpha)[i] > 0.f)) d.r = -1;  // alpha 0 (or NaN) lets all light through
+      tiles_of(d, [&](uint32_t t) {
+        if (covers(d, t))
+          floor[t] = std::min(floor[t], d.z + 0.0);
+        else
+          ++count[t + 1];
+      });
+    }
+  }
+
   // The bins hold copies of the discs, so that a tile reads its own in one
   // run of memory instead of gathering them from the whole set.
-  std::vector<Disc>& bins = sc.bins;
-  bins.resize(count.back());
-  std::vector<uint32_t>& fill = sc.fill;
-  fill.assign(count.begin(), count.end() - 1);
-  for (const Disc& d : discs)
-    tiles_of(d, [&](uint32_t t) {
-      if (!covers(d, t)) bins[fill[t]++] = d;
-    });
+  void fill_bins() {
+    std::vector<uint32_t>& count = sc.count;
+    for (size_t t = 0; t < grid.count(); ++t) count[t + 1] += count[t];
+    sc.bins.resize(count.back());
+    std::vector<uint32_t>& fill = sc.fill;
+    fill.assign(count.begin(), count.end() - 1);
+    for (const Disc& d : sc.discs)
+      tiles_of(d, [&](uint32_t t) {
+        if (!covers(d, t)) sc.bins[fill[t]++] = d;
+      });
+  }
 
-  // Alpha occluders: 0 < α < 1 goes to the lists, α >= 1 (and every sphere
-  // without alpha) to the depths.
-  if (translucent) translucent->reset(D);
-  TiledDepths centre;
-  centre.reset(D, 1);
-  DepthBlocks blocks;
-  blocks.reset(D);
-  std::vector<uint32_t> busy;
-  for (uint32_t t = 0; t < grid.count(); ++t)
-    if (count[t + 1] != count[t] || floor[t] < INFINITY) {
-      busy.push_back(t);
-      centre.add_tile(t % grid.cols(), t / grid.cols());
-    }
-  struct Work {
-    std::vector<double> db;
-    std::vector<float> out;
-    std::vector<TranslucentTexel> frags;
-    std::vector<uint32_t> order;  // the tile's opaque discs (bin entries), nearer first
-    std::vector<uint8_t> slot;    // their depth slices
-    double bmax[kBlocks * kBlocks];                   // per 8×8 block: its farthest depth
-    bool dirty[kBlocks * kBlocks];                    // ... written since it was computed
-    uint64_t written = 0;
-  };
-  tbb::enumerable_thread_specific<Work> work;
-  TiledDepthsSink sink(centre);
-  run_tiles(grid, busy, threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
-    Work& w = work.local();
-    const uint32_t W = r.width(), H = r.height();
-    w.db.assign(size_t(W) * H, floor[t]);
-    std::fill(w.bmax, w.bmax + kBlocks * kBlocks, floor[t]);
-    std::fill(w.dirty, w.dirty + kBlocks * kBlocks, false);
-    // The farthest depth of block (bx, by), recomputed when written since.
-    auto block_far = [&](int bx, int by) {
-      const int b = by * kBlocks + bx;
-      if (w.dirty[b]) {
-        double m = -INFINITY;
-        for (uint32_t y = by * 8; y < std::min<uint32_t>(H, by * 8 + 8); ++y)
-          for (uint32_t x = bx * 8; x < std::min<uint32_t>(W, bx * 8 + 8); ++x) m = std::max(m, w.db[size_t(y) * W + x]);
-        w.bmax[b] = m;
-        w.dirty[b] = false;
+  // The tiles with a disc or a floor, added to `centre`: the others hold no caster.
+  std::vector<uint32_t> busy_tiles(TiledDepths& centre) const {
+    std::vector<uint32_t> busy;
+    for (uint32_t t = 0; t < grid.count(); ++t)
+      if (sc.count[t + 1] != sc.count[t] || sc.floor[t] < INFINITY) {
+        busy.push_back(t);
+        centre.add_tile(t % grid.cols(), t / grid.cols());
       }
-      return w.bmax[b];
+    return busy;
+  }
+};
+
+// A thread's buffers for a map's tiles.
+struct TileWork {
+  std::vector<double> db;
+  std::vector<float> out;
+  std::vector<TranslucentTexel> frags;
+  std::vector<uint32_t> order;  // the tile's opaque discs (bin entries), nearer first
+  std::vector<uint8_t> slot;    // their depth slices
+  double bmax[kBlocks * kBlocks];  // per 8×8 block: its farthest depth
+  bool dirty[kBlocks * kBlocks];   // ... written since it was computed
+  uint64_t written = 0;
+};
+
+// One tile of a map, drawn by one thread: its depths start at its floor,
+// take the minimum of its opaque discs, nearest first, and then list the
+// translucent discs in front of them.
+struct DiscTile {
+  DiscTile(const MapDiscs& discs, TileWork& work, uint32_t tile, const TileRect& rect)
+      : md(discs), w(work), t(tile), r(rect), W(rect.width()), H(rect.height()) {
+    w.db.assign(size_t(W) * H, md.sc.floor[t]);
+    std::fill(w.bmax, w.bmax + kBlocks * kBlocks, md.sc.floor[t]);
+    std::fill(w.dirty, w.dirty + kBlocks * kBlocks, false);
+  }
+
+  // The opaque discs, nearer first (by kOrderBuckets depth slices of the
+  // tile's range, a counting sort: cheaper than sorting, and the order only
+  // decides how many later discs are skipped whole). The minimum depends
+  // neither on the order nor on a skipped disc.
+  void draw_opaque() {
+    order_opaque();
+    const std::vector<Disc>& bins = md.sc.bins;
+    const bool disc_mode = md.disc_mode;
+    for (uint32_t b = 0; b < kOrderBuckets; ++b) {
+      const uint32_t k0 = b == 0 ? 0 : first[b - 1], k1 = first[b];
+      // (Checked for buckets large enough to pay for the tile's 64 block
+      // maxima; the discs of a small one are tested one by one anyway.)
+      if (k0 == k1 || (k1 - k0 >= kSkipTest && bucket_near[b] >= tile_far())) continue;
+      for (uint32_t q = k0; q < k1; ++q) {
+        const Disc& d = bins[w.order[q]];
+        far_stale |= rows(d, md.nearest(d), [&](int y, int xa, int xb, double dy2) {
+          double* o = w.db.data() + size_t(y) * W;
+          if (disc_mode) {
+            const double z = d.z + 0.0;
+            for (int x = xa; x <= xb; ++x) o[x] = std::min(o[x], z);
+          } else {
+            for (int x = xa; x <= xb; ++x) o[x] = std::min(o[x], depth_at(d, x, dy2));
+          }
+        });
+      }
+    }
+  }
+
+  // Translucent discs in front of the tile's opaque depths: a point behind
+  // those is blocked whatever lies between.
+  void list_translucent(TransmittanceLists& lists) {
+    const std::vector<uint32_t>& count = md.sc.count;
+    const bool disc_mode = md.disc_mode;
+    w.frags.clear();
+    for (uint32_t k = count[t]; k < count[t + 1]; ++k) {
+      const Disc& d = md.sc.bins[k];
+      const uint32_t id = d.id;
+      if (md.opaque(id)) continue;
+      const double pass = 1.0 - double((*md.alpha)[id]);
+      rows(d, md.nearest(d), [&](int y, int xa, int xb, double dy2) {
+        const double* o = w.db.data() + size_t(y) * W;
+        for (int x = xa; x <= xb; ++x) {
+          const double z = disc_mode ? d.z + 0.0 : depth_at(d, x, dy2);
+          if (z < o[x]) w.frags.push_back({uint32_t(y) * kMapTile + uint32_t(x), id, z, pass});
+        }
+      });
+    }
+    lists.set_tile(r.x0 >> kMapTileShift, r.y0 >> kMapTileShift, w.frags);
+  }
+
+  // The depths rounded up to floats, with their blocks' ranges.
+  const float* finish(DepthBlocks& blocks) {
+    w.out.resize(w.db.size());
+    round_depths_up(w.db.data(), w.db.size(), w.out.data());
+    fold_block_ranges(w.out.data(), W, r.x0, r.y0, r.x1, r.y1, blocks);  // whole blocks per tile
+    return w.out.data();
+  }
+
+  // The farthest depth of block (bx, by), recomputed when written since.
+  double block_far(int bx, int by) {
+    const int b = by * kBlocks + bx;
+    if (w.dirty[b]) {
+      double m = -INFINITY;
+      for (uint32_t y = by * 8; y < std::min<uint32_t>(H, by * 8 + 8); ++y)
+        for (uint32_t x = bx * 8; x < std::min<uint32_t>(W, bx * 8 + 8); ++x) m = std::max(m, w.db[size_t(y) * W + x]);
+      w.bmax[b] = m;
+      w.dirty[b] = false;
+    }
+    return w.bmax[b];
+  }
+
+  // Calls fn(y, xa, xb, dy²) for the runs of texel centres xa..xb of each
+  // row y of the tile (tile coordinates) inside the disc: exactly those
+  // with (x−cx)² + (y−cy)² <= r² (the square root gives the run, the exact
+  // test its ends), and only over the 8×8 blocks where the disc is nearer
+  // than the block's farthest depth (`znear`: the disc's nearest depth;
+  // elsewhere it could change nothing: the thesis's early-z, spheres digest
+  // §2.4.5, per block). False when no block under its box is open.
+  static_assert(kBlocks * kBlocks <= 64, "a tile's open blocks fit one 64-bit mask");
+  template <class Fn>
+  bool rows(const Disc& d, double znear, Fn&& fn) {
+    const int x0 = std::max(int(r.x0), int(std::ceil(d.x - d.r)));
+    const int x1 = std::min(int(r.x1) - 1, int(std::floor(d.x + d.r)));
+    const int y0 = std::max(int(r.y0), int(std::ceil(d.y - d.r)));
+    const int y1 = std::min(int(r.y1) - 1, int(std::floor(d.y + d.r)));
+    if (x0 > x1 || y0 > y1) return false;
+    const int bx0 = (x0 - int(r.x0)) >> 3, bx1 = (x1 - int(r.x0)) >> 3;
+    const int by0 = (y0 - int(r.y0)) >> 3, by1 = (y1 - int(r.y0)) >> 3;
+    uint64_t open = 0;
+    for (int by = by0; by <= by1; ++by)
+      for (int bx = bx0; bx <= bx1; ++bx)
+        if (znear < block_far(bx, by)) open |= uint64_t(1) << (by * kBlocks + bx);
+    if (!open) return false;
+    const bool all_open = std::popcount(open) == (bx1 - bx0 + 1) * (by1 - by0 + 1);  // most small discs
+    const double r2 = d.r * d.r;
+    auto inside = [&](int x, double dy2) {
+      const double dx = x - d.x;
+      return dx * dx + dy2 <= r2;
     };
-    // Calls fn(y, xa, xb, dy²) for the runs of texel centres xa..xb of each
-    // row y of the tile (tile coordinates) inside the disc: exactly those
-    // with (x−cx)² + (y−cy)² <= r² (the square root gives the run, the exact
-    // test its ends), and only over the 8×8 blocks where the disc is nearer
-    // than the block's farthest depth (`znear`: the disc's nearest depth;
-    // elsewhere it could change nothing: early-z, §5.4, per block). False
-    // when no block under its box is open.
-    static_assert(kBlocks * kBlocks <= 64, "a tile's open blocks fit one 64-bit mask");
-    auto rows = [&](const Disc& d, double znear, auto&& fn) {
-      const int x0 = std::max(int(r.x0), int(std::ceil(d.x - d.r)));
-      const int x1 = std::min(int(r.x1) - 1, int(std::floor(d.x + d.r)));
-      const int y0 = std::max(int(r.y0), int(std::ceil(d.y - d.r)));
-      const int y1 = std::min(int(r.y1) - 1, int(std::floor(d.y + d.r)));
-      if (x0 > x1 || y0 > y1) return false;
-      const int bx0 = (x0 - int(r.x0)) >> 3, bx1 = (x1 - int(r.x0)) >> 3;
-      const int by0 = (y0 - int(r.y0)) >> 3, by1 = (y1 - int(r.y0)) >> 3;
-      uint64_t open = 0;
-      for (int by = by0; by <= by1; ++by)
-        for (int bx = bx0; bx <= bx1; ++bx)
-          if (znear < block_far(bx, by)) open |= uint64_t(1) << (by * kBlocks + bx);
-      if (!open) return false;
-      const bool all_open = std::popcount(open) == (bx1 - bx0 + 1) * (by1 - by0 + 1);  // most small discs
-      const double r2 = d.r * d.r;
-      auto inside = [&](int x, double dy2) {
-        const double dx = x - d.x;
-        return dx * dx + dy2 <= r2;
-      };
-      for (int y = y0; y <= y1; ++y) {
-        const uint64_t row_open = open >> (((y - int(r.y0)) >> 3) * kBlocks);
-        if ((row_open & ((uint64_t(1) << kBlocks) - 1)) == 0) continue;
-        const double dy = y - d.y, dy2 = dy * dy;
-        const double h = std::sqrt(std::max(0.0, r2 - dy2));
-        int xa = std::max(x0, int(std::ceil(d.x - h))), xb = std::min(x1, int(std::floor(d.x + h)));
-        while (xa <= xb && !inside(xa, dy2)) ++xa;
-        while (xa > x0 && inside(xa - 1, dy2)) --xa;
-        while (xb >= xa && !inside(xb, dy2)) --xb;
-        while (xb < x1 && xb >= xa && inside(xb + 1, dy2)) ++xb;
-        if (xa > xb) continue;
-        const int ta = xa - int(r.x0), tb = xb - int(r.x0), yt = y - int(r.y0);
-        if (all_open) {
-          fn(yt, ta, tb, dy2);
-          w.written += uint64_t(tb - ta + 1);
+    for (int y = y0; y <= y1; ++y) {
+      const uint64_t row_open = open >> (((y - int(r.y0)) >> 3) * kBlocks);
+      if ((row_open & ((uint64_t(1) << kBlocks) - 1)) == 0) continue;
+      const double dy = y - d.y, dy2 = dy * dy;
+      const double h = std::sqrt(std::max(0.0, r2 - dy2));
+      int xa = std::max(x0, int(std::ceil(d.x - h))), xb = std::min(x1, int(std::floor(d.x + h)));
+      while (xa <= xb && !inside(xa, dy2)) ++xa;
+      while (xa > x0 && inside(xa - 1, dy2)) --xa;
+      while (xb >= xa && !inside(xb, dy2)) --xb;
+      while (xb < x1 && xb >= xa && inside(xb + 1, dy2)) ++xb;
+      if (xa > xb) continue;
+      const int ta = xa - int(r.x0), tb = xb - int(r.x0), yt = y - int(r.y0);
+      if (all_open) {
+        fn(yt, ta, tb, dy2);
+        w.written += uint64_t(tb - ta + 1);
+        continue;
+      }
+      // The run cut to its open blocks.
+      for (int b = ta >> 3; b <= (tb >> 3);) {
+        if (!((row_open >> b) & 1)) {
+          ++b;
           continue;
         }
-        // The run cut to its open blocks.
-        for (int b = ta >> 3; b <= (tb >> 3);) {
-          if (!((row_open >> b) & 1)) {
-            ++b;
-            continue;
-          }
-          int e = b;
-          while (e + 1 <= (tb >> 3) && ((row_open >> (e + 1)) & 1)) ++e;
-          const int sa = std::max(ta, b * 8), sb = std::min(tb, e * 8 + 7);
-          fn(yt, sa, sb, dy2);
-          w.written += uint64_t(sb - sa + 1);
-          b = e + 1;
-        }
+        int e = b;
+        while (e + 1 <= (tb >> 3) && ((row_open >> (e + 1)) & 1)) ++e;
+        const int sa = std::max(ta, b * 8), sb = std::min(tb, e * 8 + 7);
+        fn(yt, sa, sb, dy2);
+        w.written += uint64_t(sb - sa + 1);
+        b = e + 1;
       }
-      for (int q = 0; q < kBlocks * kBlocks; ++q)
-        if ((open >> q) & 1) w.dirty[q] = true;
-      return true;
-    };
-    // The disc's depth at texel x of a row (impostor: the front surface,
-    // r·√(1 − ρ²/r²) nearer than the centre).
-    auto depth_at = [&](const Disc& d, int xt, double dy2) {
-      const double r2 = d.r * d.r, dx = xt + int(r.x0) - d.x;
-      return d.z - d.r * texel * std::sqrt(std::max(0.0, 1 - (dx * dx + dy2) / r2)) + 0.0;
-    };
-    auto nearest = [&](const Disc& d) { return disc_mode ? d.z + 0.0 : d.z - d.r * texel; };
-    // Opaque discs, nearer first (by kOrderBuckets depth slices of the
-    // tile's range, a counting sort: cheaper than sorting, and the order
-    // only decides how many later discs are skipped whole). The minimum
-    // depends neither on the order nor on a skipped disc.
+    }
+    for (int q = 0; q < kBlocks * kBlocks; ++q)
+      if ((open >> q) & 1) w.dirty[q] = true;
+    return true;
+  }
+
+  // The disc's depth at texel x of a row (impostor: the front surface,
+  // r·√(1 − ρ²/r²) nearer than the centre).
+  double depth_at(const Disc& d, int xt, double dy2) const {
+    const double r2 = d.r * d.r, dx = xt + int(r.x0) - d.x;
+    return d.z - d.r * md.texel * std::sqrt(std::max(0.0, 1 - (dx * dx + dy2) / r2)) + 0.0;
+  }
+
+  // The counting sort of the opaque discs into w.order: bucket b's discs
+  // end at first[b], the nearest of them at bucket_near[b].
+  void order_opaque() {
+    const std::vector<uint32_t>& count = md.sc.count;
+    const std::vector<Disc>& bins = md.sc.bins;
     double zlo = INFINITY, zhi = -INFINITY;
     for (uint32_t k = count[t]; k < count[t + 1]; ++k) {
-      const double z = nearest(bins[k]);
+      const double z = md.nearest(bins[k]);
       zlo = std::min(zlo, z), zhi = std::max(zhi, z);
     }
     const double zs = zhi > zlo ? (kOrderBuckets - 0.5) / (zhi - zlo) : 0.0;
-    uint32_t first[kOrderBuckets + 1] = {};
-    double bucket_near[kOrderBuckets];  // the nearest depth of each bucket's discs
     std::fill(bucket_near, bucket_near + kOrderBuckets, INFINITY);
     w.slot.resize(count[t + 1] - count[t]);
     for (uint32_t k = count[t]; k < count[t + 1]; ++k) {
-      const uint32_t b = opaque(bins[k].id) ? uint32_t((nearest(bins[k]) - zlo) * zs) : kOrderBuckets;
+      const uint32_t b = md.opaque(bins[k].id) ? uint32_t((md.nearest(bins[k]) - zlo) * zs) : kOrderBuckets;
       w.slot[k - count[t]] = uint8_t(b);
       ++first[b];
-      if (b < kOrderBuckets) bucket_near[b] = std::min(bucket_near[b], nearest(bins[k]));
+      if (b < kOrderBuckets) bucket_near[b] = std::min(bucket_near[b], md.nearest(bins[k]));
     }
     for (uint32_t b = 0, sum = 0; b <= kOrderBuckets; ++b) {
       const uint32_t c = first[b];
@@ -265,65 +349,67 @@ ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::ve
       const uint8_t b = w.slot[k - count[t]];
       if (b < kOrderBuckets) w.order[first[b]++] = k;
     }
-    // The tile's farthest depth: a bucket whose discs are all at least that
-    // far changes nothing and is skipped without reading its discs (a tile
-    // covered early by large near discs skips most of its list).
-    double far_cached = INFINITY;
-    bool far_stale = true;  // a disc was drawn since far_cached was computed
-    auto tile_far = [&] {
-      if (far_stale) {
-        far_cached = -INFINITY;
-        for (int by = 0; by < kBlocks; ++by)
-          for (int bx = 0; bx < kBlocks; ++bx) far_cached = std::max(far_cached, block_far(bx, by));
-        far_stale = false;
-      }
-      return far_cached;
-    };
-    for (uint32_t b = 0; b < kOrderBuckets; ++b) {
-      const uint32_t k0 = b == 0 ? 0 : first[b - 1], k1 = first[b];
-      // (Checked for buckets large enough to pay for the tile's 64 block
-      // maxima; the discs of a small one are tested one by one anyway.)
-      if (k0 == k1 || (k1 - k0 >= kSkipTest && bucket_near[b] >= tile_far())) continue;
-      for (uint32_t q = k0; q < k1; ++q) {
-        const Disc& d = bins[w.order[q]];
-        far_stale |= rows(d, nearest(d), [&](int y, int xa, int xb, double dy2) {
-          double* o = w.db.data() + size_t(y) * W;
-          if (disc_mode) {
-            const double z = d.z + 0.0;
-            for (int x = xa; x <= xb; ++x) o[x] = std::min(o[x], z);
-          } else {
-            for (int x = xa; x <= xb; ++x) o[x] = std::min(o[x], depth_at(d, x, dy2));
-          }
-        });
-      }
+  }
+
+  // The tile's farthest depth: a bucket whose discs are all at least that
+  // far changes nothing and is skipped without reading its discs (a tile
+  // covered early by large near discs skips most of its list).
+  double tile_far() {
+    if (far_stale) {
+      far_cached = -INFINITY;
+      for (int by = 0; by < kBlocks; ++by)
+        for (int bx = 0; bx < kBlocks; ++bx) far_cached = std::max(far_cached, block_far(bx, by));
+      far_stale = false;
     }
-    if (translucent) {
-      // Translucent discs in front of the tile's opaque depths: a point
-      // behind those is blocked whatever lies between.
-      w.frags.clear();
-      for (uint32_t k = count[t]; k < count[t + 1]; ++k) {
-        const Disc& d = bins[k];
-        const uint32_t id = d.id;
-        if (opaque(id)) continue;
-        const double pass = 1.0 - double((*alpha)[id]);
-        rows(d, nearest(d), [&](int y, int xa, int xb, double dy2) {
-          const double* o = w.db.data() + size_t(y) * W;
-          for (int x = xa; x <= xb; ++x) {
-            const double z = disc_mode ? d.z + 0.0 : depth_at(d, x, dy2);
-            if (z < o[x]) w.frags.push_back({uint32_t(y) * kMapTile + uint32_t(x), id, z, pass});
-          }
-        });
-      }
-      translucent->set_tile(r.x0 >> kMapTileShift, r.y0 >> kMapTileShift, w.frags);
-    }
-    w.out.resize(w.db.size());
-    round_depths_up(w.db.data(), w.db.size(), w.out.data());
-    fold_block_ranges(w.out.data(), W, r.x0, r.y0, r.x1, r.y1, blocks);  // whole blocks per tile
-    return w.out.data();
+    return far_cached;
+  }
+
+  const MapDiscs& md;
+  TileWork& w;
+  const uint32_t t;
+  const TileRect& r;
+  const uint32_t W, H;
+  uint32_t first[kOrderBuckets + 1] = {};
+  double bucket_near[kOrderBuckets];  // the nearest depth of each bucket's discs
+  double far_cached = INFINITY;
+  bool far_stale = true;  // a disc was drawn since far_cached was computed
+};
+
+}  // namespace
+
+ShadowMap build_sphere_map(const std::vector<glm::dvec3>& centres, const std::vector<double>& radii,
+                           const glm::dvec3& omega, uint32_t D, SphereDepth mode, const ShadowSettings& s,
+                           int threads, SphereMapStats* stats, const std::vector<float>* alpha,
+                           TransmittanceLists* translucent, SphereMapScratch* scratch) {
+  SphereMapScratch own;
+  const auto t0 = std::chrono::steady_clock::now();
+  Light light;
+  light.type = LightType::Directional;
+  light.direction = -omega;
+  const Camera frame = map_frame(light, sphere_box(centres, radii), D);
+  MapDiscs m{D, TileGrid{D, D, kMapTile, 1}, frame.height / D, mode == SphereDepth::CentreDisc, alpha,
+             scratch ? *scratch : own};
+  m.project(centres, radii, View(frame, D, D));
+  m.fill_bins();
+  // Alpha occluders: 0 < α < 1 goes to the lists, α >= 1 (and every sphere
+  // without alpha) to the depths.
+  if (translucent) translucent->reset(D);
+  TiledDepths centre;
+  centre.reset(D, 1);
+  DepthBlocks blocks;
+  blocks.reset(D);
+  const std::vector<uint32_t> busy = m.busy_tiles(centre);
+  tbb::enumerable_thread_specific<TileWork> work;
+  TiledDepthsSink sink(centre);
+  run_tiles(m.grid, busy, threads, sink, [&](uint32_t t, const TileRect& r) -> const float* {
+    DiscTile tile(m, work.local(), t, r);
+    tile.draw_opaque();
+    if (translucent) tile.list_translucent(*translucent);
+    return tile.finish(blocks);
   });
   if (stats) {
     stats->texels_written = 0;
-    for (const Work& w : work) stats->texels_written += w.written;
+    for (const TileWork& w : work) stats->texels_written += w.written;
     stats->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   if (translucent) translucent->count_fragments();

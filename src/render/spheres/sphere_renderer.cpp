@@ -7,10 +7,8 @@
 #include <string>
 
 #include <glm/geometric.hpp>
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
 #include "raster/depth_buffer.h"
@@ -20,9 +18,11 @@
 #include "lighting/sphere_map.h"
 #include "lighting/shading_model.h"
 #include "render/spheres/sphere_ao.h"
+#include "render/spheres/sphere_bins.h"
 #include "render/spheres/translucent_tile.h"
 #include "base/util/bytes_str.h"
 #include "base/util/memory.h"
+#include "base/util/memory_ledger.h"
 #include "base/util/progress.h"
 #include "base/view/camera.h"
 
@@ -81,8 +81,7 @@ struct SphereRenderer::Impl {
   CameraPlane cam;
   TileGrid grid;
   SphereStats setup, totals;
-  std::vector<uint64_t> bin_offset;  // tiles + 1
-  std::vector<uint32_t> bin_ids;     // grid entries per tile, front-to-back cell order
+  SphereBins bins;
   tbb::enumerable_thread_specific<TileState> states;
   uint64_t kbuf_bytes = 0;
   static constexpr uint64_t kMaxKbufBytes = uint64_t(512) << 20;
@@ -102,140 +101,110 @@ struct SphereRenderer::Impl {
       : s(spheres), colors(c), g(grid_), rs(settings), view(settings.camera, settings.width, settings.height),
         cam(camera_plane(view)), ao(std::move(ao_maps)) {
     const auto t_start = Clock::now();
+    validate();
+    const int threads = std::max(1, rs.threads);
+    MemoryLedger ledger(rs.budget(), "a " + std::to_string(rs.width) + "x" + std::to_string(rs.height) +
+                                         " render of " + std::to_string(s.size()) + " spheres");
+    start_stats(ledger);
+    hold_frame(ledger, extra_bytes, threads);
+    ledger.check("the visible list", s.size() * 4);
+    if (rs.ao.directions) choose_ao(ledger, threads);
+    std::vector<uint8_t> occluder;
+    if (rs.mode != SphereMode::Opaque) occluder = occluders(ledger, threads);
+    const std::vector<uint32_t> visible = visible_entries(std::move(occluder), ledger, threads);
+    const auto t_bin = Clock::now();
+    bins = bin_spheres(g, visible, view, grid, threads, ledger);
+    setup.bin_entries = bins.ids.size();
+    setup.shared_bytes = ledger.held();
+    // What is left of the budget, per thread, for sorted's deeper k-buffer
+    // passes (TranslucentTile::sorted), at most kMaxKbufBytes: enough for a
+    // 64² tile 8192 fragments deep.
+    const uint64_t base_kbuf = grid.max_tile_pixels() * TranslucentTile::kSortedLayers * 16;
+    kbuf_bytes = std::max(base_kbuf, std::min(kMaxKbufBytes, ledger.left() / threads));
+    setup.ms_binning = ms_since(t_bin);
+    setup.ms_setup = ms_since(t_start);
+  }
+
+  // The settings a render cannot start without; the tile grid.
+  void validate() {
     if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
     if (rs.tile_size < 1) throw std::runtime_error("tile size must be at least 1 pixel");
     if (colors.size() != s.size()) throw std::runtime_error("one colour per sphere is needed");
     grid = TileGrid{rs.width, rs.height, rs.tile_size, sphere_channels(rs)};
     if (uint64_t(grid.cols()) * grid.rows() >= (uint64_t(1) << 32))
       throw std::runtime_error("too many tiles; use a larger tile size");
-    const int threads = std::max(1, rs.threads);
-    const uint64_t budget = rs.budget();
-    SphereStats& S = setup;
-    S.memory_budget_bytes = budget;
-    S.spheres = s.size();
-    S.invalid = g.invalid;
-    S.tiles = grid.count();
-    S.tile_size = rs.tile_size;
-    const uint64_t tile_px = grid.max_tile_pixels();  // tiles clipped to the image
-    const uint64_t tile_state = tile_px * (kTilePixelBytes + 4 * grid.channels);
-    uint64_t shared = extra_bytes + g.bytes() + uint64_t(threads) * tile_state +
-                      relay_queue_tiles(grid, threads) * tile_px * 4 * grid.channels;
-    auto check = [&](uint64_t need) {
-      if (need > budget)
-        throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " +
-                                 std::to_string(rs.width) + "x" + std::to_string(rs.height) + " render of " +
-                                 std::to_string(s.size()) + " spheres (needs more than " + bytes_str(need) + ")");
-    };
-    check(shared + s.size() * 4);
-    if (rs.ao.directions) {
-      ao_dirs = ao_directions(rs.ao.directions);
-      if (!ao && !rs.ao.batches) {
-        ao = sphere_ao_maps(s, colors, rs, budget > shared ? budget - shared : 0);  // null: they do not all fit
-        if (ao) S.ms_ao_maps = ao->ms_build;
-      }
-      if (ao) {
-        S.ao_map_bytes = ao->bytes;
-        S.ao_translucent_fragments = ao->translucent_fragments;
-        shared += ao->bytes;
-        check(shared);
-      } else {
-        // Batches: the image's sums and ao_batch maps at a time (sphere_ao.h).
-        const uint64_t sums = sphere_ao_sums_bytes(rs);
-        ao_batch = sphere_ao_batch_size(rs, budget, shared, threads);
-        S.ao_batches = (rs.ao.directions + ao_batch - 1) / ao_batch;
-        ao_budget_left = budget - shared - sums;  // what a batch may really take
-        shared += sums + uint64_t(ao_batch) * sphere_ao_map_bytes_bound(rs);
-      }
-    }
+  }
 
-    // Translucent modes: only opaque spheres hide others (culling stays
-    // lossless), and each thread holds a tile's translucent state.
-    std::vector<uint8_t> occluder;
-    if (rs.mode != SphereMode::Opaque) {
-      occluder.resize(g.ids.size());
-      for (size_t e = 0; e < g.ids.size(); ++e) occluder[e] = colors[g.ids[e]].a >= 1.f;
-      shared += occluder.size() + uint64_t(threads) * tile_px * TranslucentTile::kPixelBytes;
-      check(shared);
+  // The set-up's counts known before any work.
+  void start_stats(const MemoryLedger& ledger) {
+    setup.memory_budget_bytes = ledger.budget();
+    setup.spheres = s.size();
+    setup.invalid = g.invalid;
+    setup.tiles = grid.count();
+    setup.tile_size = rs.tile_size;
+  }
+
+  // What every frame holds: the caller's share, the grid, each thread's tile
+  // (clipped to the image) and the finished tiles queued for the sink.
+  void hold_frame(MemoryLedger& ledger, uint64_t extra_bytes, int threads) const {
+    const uint64_t tile_px = grid.max_tile_pixels();
+    ledger.add("what the caller holds", extra_bytes);
+    ledger.add("the sphere grid", g.bytes());
+    ledger.add("each thread's tile", uint64_t(threads) * tile_px * (kTilePixelBytes + 4 * grid.channels));
+    ledger.add("the tiles queued for output", relay_queue_tiles(grid, threads) * tile_px * 4 * grid.channels);
+  }
+
+  // AO (spheres digest §2.4.5): every direction's map held (the caller's,
+  // or built here when they all fit what is left), else batches of maps
+  // built by every frame, with the image's sums (sphere_ao.h).
+  void choose_ao(MemoryLedger& ledger, int threads) {
+    ao_dirs = ao_directions(rs.ao.directions);
+    if (!ao && !rs.ao.batches) {
+      ao = sphere_ao_maps(s, colors, rs, ledger.left());  // null: they do not all fit
+      if (ao) setup.ms_ao_maps = ao->ms_build;
     }
+    if (ao) {
+      setup.ao_map_bytes = ao->bytes;
+      setup.ao_translucent_fragments = ao->translucent_fragments;
+      ledger.add("the AO maps", ao->bytes, "lower ao.map_size");
+      return;
+    }
+    const uint64_t sums = sphere_ao_sums_bytes(rs);
+    ao_batch = sphere_ao_batch_size(rs, ledger.budget(), ledger.held(), threads);
+    setup.ao_batches = (rs.ao.directions + ao_batch - 1) / ao_batch;
+    ao_budget_left = ledger.left() - sums;  // what a batch may really take
+    ledger.add("the AO sums and a batch of maps", sums + uint64_t(ao_batch) * sphere_ao_map_bytes_bound(rs),
+               "lower ao.map_size");
+  }
+
+  // Translucent modes: only opaque spheres hide others (culling stays
+  // lossless), one flag per grid entry; and each thread holds a tile's
+  // translucent state.
+  std::vector<uint8_t> occluders(MemoryLedger& ledger, int threads) const {
+    std::vector<uint8_t> occluder(g.ids.size());
+    for (size_t e = 0; e < g.ids.size(); ++e) occluder[e] = colors[g.ids[e]].a >= 1.f;
+    ledger.add("the translucent tiles",
+               occluder.size() + uint64_t(threads) * grid.max_tile_pixels() * TranslucentTile::kPixelBytes);
+    return occluder;
+  }
+
+  // The grid entries the frame draws (sphere_visibility.h; `occluder`: the
+  // translucent modes' flags, else empty); alpha 0 draws nothing in a
+  // translucent mode.
+  std::vector<uint32_t> visible_entries(std::vector<uint8_t> occluder, MemoryLedger& ledger, int threads) {
     const auto t_vis = Clock::now();
-    std::vector<uint32_t> visible = visible_spheres(s, g, view, rs.culling, &S.vis, threads,
+    std::vector<uint32_t> visible = visible_spheres(s, g, view, rs.culling, &setup.vis, threads,
                                                     occluder.empty() ? nullptr : &occluder);
     occluder = {};
-    if (rs.mode != SphereMode::Opaque) {  // alpha 0 draws nothing in a translucent mode
+    if (rs.mode != SphereMode::Opaque) {
       const size_t before = visible.size();
       visible.erase(std::remove_if(visible.begin(), visible.end(), [&](uint32_t e) { return !(colors[g.ids[e]].a > 0.f); }),
                     visible.end());
-      S.spheres_clear = before - visible.size();
+      setup.spheres_clear = before - visible.size();
     }
-    S.ms_visibility = ms_since(t_vis);
-    shared += visible.size() * 4 + S.vis.map_bytes;
-
-    // Bins, nearest first: each sphere's nearest depth and tile range in one
-    // pass over the visible list (in parallel, in the grid's memory order),
-    // then sorted by depth, counted and filled.
-    const auto t_bin = Clock::now();
-    const Viewport image{0, 0, int(rs.width), int(rs.height)};
-    const uint32_t cols = grid.cols(), size = grid.size;
-    struct Box {
-      uint32_t c0, c1, r0, r1;  // c0 > c1: no pixel centre of the image
-    };
-    std::vector<Box> boxes(visible.size());
-    struct Key {
-      double z;     // nearest depth
-      uint32_t id;  // sphere index: ties broken the same way whatever the culling
-      uint32_t q;   // index into visible
-      bool operator<(const Key& o) const { return z < o.z || (z == o.z && id < o.id); }
-    };
-    std::vector<Key> key(visible.size());
-    shared += boxes.size() * (sizeof(Box) + sizeof(key[0]));
-    check(shared);
-    tbb::task_arena arena(threads);
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, visible.size(), 4096), [&](const tbb::blocked_range<size_t>& br) {
-        for (size_t q = br.begin(); q < br.end(); ++q) {
-          const uint32_t e = visible[q];
-          const glm::dvec3 c = to_camera(view, g.centre[e]);
-          key[q] = {c.z - g.radius[e], g.ids[e], uint32_t(q)};
-          const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, g.radius[e]);
-          int i0, i1, j0, j1;
-          if (!sphere_pixel_range(su, image, &i0, &i1, &j0, &j1)) {
-            boxes[q] = {1, 0, 0, 0};
-            continue;
-          }
-          boxes[q] = {uint32_t(i0) / size, uint32_t(i1) / size, uint32_t(j0) / size, uint32_t(j1) / size};
-        }
-      });
-      // By nearest depth, then by sphere index: one order of the spheres
-      // whatever the culling, grid or tiles. A tile's first spheres then
-      // hide most of the rest, which its block test skips whole. The order
-      // changes no pixel of the opaque and sorted modes (their depth tests
-      // are order-independent), only the work; the weighted sum adds in it.
-      tbb::parallel_sort(key.begin(), key.end());
-    });
-    bin_offset.assign(uint64_t(grid.count()) + 1, 0);
-    for (const Box& b : boxes)  // counting needs no order
-      for (uint32_t r = b.r0; b.c0 <= b.c1 && r <= b.r1; ++r)
-        for (uint32_t c = b.c0; c <= b.c1; ++c) ++bin_offset[uint64_t(r) * cols + c + 1];
-    for (uint64_t t = 0; t < grid.count(); ++t) bin_offset[t + 1] += bin_offset[t];
-    S.bin_entries = bin_offset.back();
-    shared += S.bin_entries * 4 + bin_offset.size() * 8;
-    check(shared);
-    S.shared_bytes = shared;
-    // What is left of the budget, per thread, for sorted's deeper k-buffer
-    // passes (TranslucentTile::sorted), at most kMaxKbufBytes: enough for a
-    // 64² tile 8192 fragments deep.
-    const uint64_t base_kbuf = tile_px * TranslucentTile::kSortedLayers * 16;
-    kbuf_bytes = std::max(base_kbuf, std::min(kMaxKbufBytes, budget > shared ? (budget - shared) / threads : 0));
-    bin_ids.resize(S.bin_entries);
-    std::vector<uint64_t> next(bin_offset.begin(), bin_offset.end() - 1);
-    for (const auto& kq : key) {
-      const uint32_t q = kq.q;
-      const Box& b = boxes[q];
-      for (uint32_t r = b.r0; b.c0 <= b.c1 && r <= b.r1; ++r)
-        for (uint32_t c = b.c0; c <= b.c1; ++c) bin_ids[next[uint64_t(r) * cols + c]++] = visible[q];
-    }
-    S.ms_binning = ms_since(t_bin);
-    S.ms_setup = ms_since(t_start);
+    setup.ms_visibility = ms_since(t_vis);
+    ledger.add("the visible list", visible.size() * 4 + setup.vis.map_bytes);
+    return visible;
   }
 
   // Whether every block of the tile under pixel box [i0, i1] x [j0, j1] (tile
@@ -276,7 +245,7 @@ struct SphereRenderer::Impl {
     if (rs.mode != SphereMode::Opaque) {
       if (!ts.translucent) ts.translucent = std::make_unique<TranslucentTile>();
       const TranslucentFrame f{&s, &g, &colors, &rs, &view, cam, kbuf_bytes, ao.get()};
-      return ts.translucent->render(f, bin_ids.data() + bin_offset[t], bin_offset[t + 1] - bin_offset[t], r, S);
+      return ts.translucent->render(f, bins.ids.data() + bins.offset[t], bins.offset[t + 1] - bins.offset[t], r, S);
     }
     raster(ts, t, r);
     resolve(ts, r);
@@ -293,18 +262,18 @@ struct SphereRenderer::Impl {
     ts.bdirty.assign(nb, 0);
     const uint32_t bw = (w + kBlock - 1) / kBlock;
     const Viewport vp{int(r.x0), int(r.y0), int(r.x1), int(r.y1)};
-    const uint64_t e_end = bin_offset[t + 1];
-    for (uint64_t e = bin_offset[t]; e < e_end; ++e) {
+    const uint64_t e_end = bins.offset[t + 1];
+    for (uint64_t e = bins.offset[t]; e < e_end; ++e) {
       // Bins are in depth order, so the entries are scattered in memory:
       // fetch a few ahead (most spheres end in a cheap test, and the loop
       // would otherwise wait on every centre).
       if (e + kPrefetch < e_end) {
-        const uint32_t ahead = bin_ids[e + kPrefetch];
+        const uint32_t ahead = bins.ids[e + kPrefetch];
         __builtin_prefetch(&g.centre[ahead]);
         __builtin_prefetch(&g.radius[ahead]);
         __builtin_prefetch(&g.ids[ahead]);
       }
-      const uint32_t entry = bin_ids[e], id = g.ids[entry];
+      const uint32_t entry = bins.ids[e], id = g.ids[entry];
       const glm::dvec3 c = to_camera(view, g.centre[entry]);
       const SphereSetup su = setup_sphere(cam, c.x, c.y, c.z, g.radius[entry]);
       // No surface of the sphere is nearer than this (a little below its
@@ -455,7 +424,7 @@ struct SphereRenderer::Impl {
       }
   }
 
-  // Shades each visible pixel once (deferred, §2.4.6): its colour, then AO
+  // Shades each visible pixel once (deferred, spheres digest §2.4.6): its colour, then AO
   // over the tile's visible pixels direction by direction (the maps held, or
   // the sums the batches left in ao_num); colour = AO × shaded colour.
   void resolve(TileState& ts, const TileRect& r) {
@@ -477,7 +446,7 @@ struct SphereRenderer::Impl {
       glm::dvec3 rgb(ts.vrgb[4 * i], ts.vrgb[4 * i + 1], ts.vrgb[4 * i + 2]);
       if (rs.ao.directions) {
         const double a = ts.aop.ao(i);
-        rgb *= a;  // final colour = AO × shaded colour (digest §2.4.6)
+        rgb *= a;  // final colour = AO × shaded colour (spheres digest §2.4.6)
         o[5] = float(a);
       }
       o[0] = float(rgb.r), o[1] = float(rgb.g), o[2] = float(rgb.b), o[3] = 1.f;  // opaque: alpha ignored
@@ -534,13 +503,13 @@ void SphereRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* t
     tiles = &all;
   }
   uint64_t work = 0;
-  for (uint32_t t : *tiles) work += I.bin_offset[t + 1] - I.bin_offset[t] + 1;
+  for (uint32_t t : *tiles) work += I.bins.offset[t + 1] - I.bins.offset[t] + 1;
   Progress progress("render", work, I.rs.progress);
   for (TileState& ts : I.states) ts.stats = {};
   if (I.rs.ao.directions && !I.ao) I.stream_ao(*tiles);
   run_tiles(I.grid, *tiles, threads(), sink, [&](uint32_t t, const TileRect& r) {
     const float* px = I.render_tile(t, r);
-    progress.add(I.bin_offset[t + 1] - I.bin_offset[t] + 1);
+    progress.add(I.bins.offset[t + 1] - I.bins.offset[t] + 1);
     return px;
   });
   progress.finish();

@@ -1,7 +1,7 @@
-// The sphere-sprite renderer (spheres digest §2.1–2.2): every sphere is an exact
-// impostor. Opaque here; the translucent modes resolve tiles with
-// translucent_tile.h on the same visibility and bins. Its silhouette is scanned as one exact conic span per row
-// (raster/sphere_span.h); each covered pixel's depth is the exact entry of
+// The sphere-sprite renderer (spheres digest §2.1–2.2): every sphere is an
+// exact impostor. Opaque here; the translucent modes resolve tiles with
+// translucent_tile.h on the same visibility and bins. Its silhouette is
+// scanned as one exact conic span per row (raster/sphere_span.h); each covered pixel's depth is the exact entry of
 // the pixel's ray into the sphere (its exit when the eye is inside), so
 // interpenetrating spheres meet on their true intersection curve in both
 // projections. A tile keeps the nearest (depth, sphere id) per pixel — ties
@@ -10,10 +10,11 @@
 // winner's exact normal (deferred: shading cost follows visible pixels, not
 // overdraw).
 //
-// Set-up per frame: the visibility tests (sphere_visibility.h), then the
-// visible spheres are binned to the tiles their silhouette boxes touch, in
-// front-to-back cell order, so a tile's early depth test (the sphere's
-// nearest possible depth against the buffer) skips most hidden fragments.
+// Set-up per frame, step by step: the settings checked, the memory the frame
+// holds counted against the budget (base/util/memory_ledger.h), the AO maps
+// (all held, or built in batches by every frame), the visibility tests
+// (sphere_visibility.h), then the visible spheres binned nearest first to
+// the tiles their silhouette boxes touch (sphere_bins.h).
 #pragma once
 
 #include <memory>

@@ -12,12 +12,13 @@
 #include "raster/tile_loop.h"
 #include "raster/triangle_bins.h"
 #include "raster/zbuffer_tile.h"
+#include "lighting/map_lookup.h"
 #include "lighting/shadow_rays.h"
 #include "render/surfaces/rgba_store.h"
 #include "render/surfaces/shade_batch.h"
 #include "lighting/visible_region.h"
-#include "base/util/bytes_str.h"
 #include "base/util/memory.h"
+#include "base/util/memory_ledger.h"
 
 namespace zs {
 
@@ -40,6 +41,18 @@ static_assert(kNoShade == kNoId, "the shading batch takes the z-buffer's ids as 
 // Per-pixel state of a tile: depth (8) + id (4) + the output floats.
 constexpr uint64_t kTilePixelBytes = 12;
 
+// Each triangle's part of a directional map's bias: ShadowMap::face_bias of
+// its face normal towards the light (NaN: turned from it).
+std::vector<double> face_biases(const ShadowMap& map, const Light& light, const std::vector<TriangleShade>& shades) {
+  const glm::dvec3 to = to_light(light, glm::dvec3(0.0));
+  std::vector<double> bias(shades.size());
+  for (size_t t = 0; t < shades.size(); ++t) {
+    const double* g = shades[t].g;
+    bias[t] = map.face_bias((g[0] * to.x + g[1] * to.y) + g[2] * to.z);
+  }
+  return bias;
+}
+
 }  // namespace
 
 std::vector<std::string> surface_channel_names(size_t lights) {
@@ -61,6 +74,8 @@ struct SurfaceRenderer::Impl {
   std::vector<TriangleShade> shades;  // per projected triangle
   TriangleBins bins;
   std::vector<ShadowMap> maps;
+  std::vector<MapLookup> lookups;          // per light (directional maps)
+  std::vector<std::vector<float>> facing;  // per light (directional ones), per projected triangle
   std::unique_ptr<ShadowRays> rays;
   bool shadows = false;
   SurfaceStats setup;
@@ -72,78 +87,112 @@ struct SurfaceRenderer::Impl {
   Impl(const TriangleMesh& m, const SurfaceRenderSettings& settings, uint64_t extra_bytes)
       : mesh(m), rs(settings), view(settings.camera, settings.width, settings.height) {
     const auto t_start = Clock::now();
+    validate();
+    const int threads = std::max(1, rs.threads);
+    setup.memory_budget_bytes = rs.budget();
+    setup.tile_size = rs.tile_size;
+    shadows = rs.shadows_enabled && !rs.lights.empty();
+    hold_memory(extra_bytes, threads);
+    const Bounds scene = triangle_bounds(mesh);
+    const double z_near = near_plane(scene);
+    project(z_near, threads);
+    set_up_lights(scene, z_near, threads);
+    for (int c = 0; c < 4; ++c) bg[c] = float(rs.background[c]);
+    setup.ms_setup = ms_since(t_start);
+  }
+
+  // The settings and mesh a render cannot start without; the tile grid.
+  void validate() {
     if (rs.width == 0 || rs.height == 0) throw std::runtime_error("image size must be at least 1x1");
     if (rs.tile_size < 1) throw std::runtime_error("tile size must be at least 1 pixel");
     if (mesh.normals.size() != mesh.points.size()) throw std::runtime_error("surface renderer: point normals missing");
     for (uint32_t s : mesh.surface)
       if (s >= rs.colors.size()) throw std::runtime_error("surface renderer: a triangle's surface has no colour");
-    const size_t L = rs.lights.size();
-    grid = TileGrid{rs.width, rs.height, rs.tile_size, rs.depth_and_lit ? uint32_t(5 + L) : 4u};
+    grid = TileGrid{rs.width, rs.height, rs.tile_size, rs.depth_and_lit ? uint32_t(5 + rs.lights.size()) : 4u};
     if (uint64_t(grid.cols()) * grid.rows() >= (uint64_t(1) << 32))
       throw std::runtime_error("too many tiles; use a larger tile size");
-    const int threads = std::max(1, rs.threads);
-    const uint64_t budget = rs.budget();
-    SurfaceStats& S = setup;
-    S.memory_budget_bytes = budget;
-    S.tile_size = rs.tile_size;
-    shadows = rs.shadows_enabled && L > 0;
-    const bool exact = rs.shadows.mode == ShadowMode::Exact;
-    const uint64_t tile_px = grid.max_tile_pixels();  // tiles clipped to the image
-    uint64_t need = extra_bytes + uint64_t(threads) * tile_px * (kTilePixelBytes + 4 * grid.channels) +
-                    relay_queue_tiles(grid, threads) * tile_px * 4 * grid.channels +
-                    // projected vertices and corners, bins (estimate: each triangle in ~2 tiles)
-                    mesh.num_points() * sizeof(ScreenVertex) + mesh.num_tris() * (16 + 8 + sizeof(TriangleShade));
-    if (shadows && !exact) need += L * shadow_map_bytes(rs.shadows) + mesh.num_points() * sizeof(ScreenVertex);
-    if (shadows && exact) need += mesh.num_points() * 12 + mesh.num_tris() * 12 * 3;  // vertex/index buffers + BVH
-    if (need > budget)
-      throw std::runtime_error("memory budget of " + bytes_str(budget) + " cannot hold a " + std::to_string(rs.width) +
-                               "x" + std::to_string(rs.height) + " render of " + std::to_string(mesh.num_tris()) +
-                               " triangles" + (shadows && !exact ? " with its shadow maps" : "") +
-                               " (needs more than " + bytes_str(need) + "); raise --memory-budget" +
-                               (shadows && !exact ? " or lower shadows.map_size" : ""));
+  }
 
-    const Bounds scene = triangle_bounds(mesh);
+  // What the frame holds, against the budget: the caller's share, each
+  // thread's tile (clipped to the image), the finished tiles queued for the
+  // sink, the projected triangles, and the shadow maps or rays.
+  void hold_memory(uint64_t extra_bytes, int threads) const {
+    const uint64_t tile_px = grid.max_tile_pixels(), P = mesh.num_points(), T = mesh.num_tris();
+    MemoryLedger ledger(rs.budget(), "a " + std::to_string(rs.width) + "x" + std::to_string(rs.height) +
+                                         " render of " + std::to_string(T) + " triangles");
+    ledger.add("what the caller holds", extra_bytes);
+    ledger.add("each thread's tile", uint64_t(threads) * tile_px * (kTilePixelBytes + 4 * grid.channels));
+    ledger.add("the tiles queued for output", relay_queue_tiles(grid, threads) * tile_px * 4 * grid.channels);
+    // Projected vertices and corners, bins (estimate: each triangle in ~2 tiles).
+    ledger.add("the projected triangles", P * sizeof(ScreenVertex) + T * (16 + 8 + sizeof(TriangleShade)));
+    if (shadows && rs.shadows.mode != ShadowMode::Exact)
+      ledger.add("its shadow maps", rs.lights.size() * shadow_map_bytes(rs.shadows) + P * sizeof(ScreenVertex),
+                 "lower shadows.map_size");
+    else if (shadows)
+      ledger.add("its shadow rays' BVH", P * 12 + T * 12 * 3);  // vertex and index buffers, BVH
+  }
+
+  // A millionth of the scene in front of a perspective eye; orthographic
+  // views keep depth >= 0 (the eye plane).
+  double near_plane(const Bounds& scene) const {
     const double diag = std::max(scene.empty ? 1.0 : scene.diagonal(), 1e-300);
-    // Near plane: a millionth of the scene in front of a perspective eye;
-    // orthographic views keep depth >= 0 (the eye plane).
-    const double z_near = view.perspective() ? 1e-6 * (diag + glm::length(view.eye() - scene.centre())) : 0.0;
+    return view.perspective() ? 1e-6 * (diag + glm::length(view.eye() - scene.centre())) : 0.0;
+  }
 
+  // The triangles in screen space, their shading set-ups, and the tile bins.
+  void project(double z_near, int threads) {
     auto t = Clock::now();
-    project_triangles(mesh, view, {rs.cull_back, rs.cull_view, z_near}, &pt, &S.project);
+    project_triangles(mesh, view, {rs.cull_back, rs.cull_view, z_near}, &pt, &setup.project);
     triangle_shades(mesh, pt.source, view, rs.shading.model, rs.colors, threads, &shades);
-    S.ms_project = ms_since(t);
+    setup.ms_project = ms_since(t);
     t = Clock::now();
     bin_triangles(grid, pt.verts, pt.corners, &bins);
-    S.bin_entries = bins.entries();
-    S.ms_binning = ms_since(t);
+    setup.bin_entries = bins.entries();
+    setup.ms_binning = ms_since(t);
+  }
 
-    t = Clock::now();
-    if (shadows && !exact) {
-      std::vector<LightFit> fits;
-      for (const Light& l : rs.lights) fits.push_back(start_fit(l));
-      const auto t_fit = Clock::now();
-      bool any_directional = false;
-      for (const Light& l : rs.lights) any_directional |= l.type == LightType::Directional;
-      if (any_directional)
-        visible_region_points(mesh, view, z_near, rs.cull_back, [&](const glm::dvec3& p) {
-          for (LightFit& f : fits) f.add(p);
-        });
-      S.ms_fit = ms_since(t_fit);
-      for (size_t l = 0; l < L; ++l) {
-        ShadowMapStats ms;
-        maps.push_back(ShadowMap::build(mesh, rs.lights[l], fits[l], scene, rs.shadows, threads, &ms));
-        S.maps.push_back(ms);
-      }
-    } else if (shadows) {
+  // The lights' shadow maps or rays, and what the shading reads per
+  // triangle and light.
+  void set_up_lights(const Bounds& scene, double z_near, int threads) {
+    const auto t = Clock::now();
+    if (shadows && rs.shadows.mode != ShadowMode::Exact)
+      build_maps(scene, z_near, threads);
+    else if (shadows) {
       rays = std::make_unique<ShadowRays>(mesh, threads);
-      S.ms_rays_build = rays->ms_build();
+      setup.ms_rays_build = rays->ms_build();
     }
     for (const Light& l : rs.lights) any_spot |= l.type == LightType::Spot;
-    // Directional lights: 1 where the face turns to the light, else 0. The
-    // lit fraction without shadows, and in map tiles with no caster (the same
-    // c > 0 as ShadowMap::face_bias's).
-    facing.resize(L);
-    for (size_t l = 0; l < L; ++l) {
+    make_facing();
+    if (!maps.empty()) make_lookups();
+    setup.ms_shadows = ms_since(t);
+  }
+
+  // One shadow map per light, each fitted to what it must cover: for a
+  // directional light, the points of the visible region (visible_region.h).
+  void build_maps(const Bounds& scene, double z_near, int threads) {
+    std::vector<LightFit> fits;
+    for (const Light& l : rs.lights) fits.push_back(start_fit(l));
+    const auto t_fit = Clock::now();
+    bool any_directional = false;
+    for (const Light& l : rs.lights) any_directional |= l.type == LightType::Directional;
+    if (any_directional)
+      visible_region_points(mesh, view, z_near, rs.cull_back, [&](const glm::dvec3& p) {
+        for (LightFit& f : fits) f.add(p);
+      });
+    setup.ms_fit = ms_since(t_fit);
+    for (size_t l = 0; l < rs.lights.size(); ++l) {
+      ShadowMapStats ms;
+      maps.push_back(ShadowMap::build(mesh, rs.lights[l], fits[l], scene, rs.shadows, threads, &ms));
+      setup.maps.push_back(ms);
+    }
+  }
+
+  // Directional lights: 1 where the face turns to the light, else 0. The
+  // lit fraction without shadows, and in map tiles with no caster (the same
+  // c > 0 as ShadowMap::face_bias's).
+  void make_facing() {
+    facing.resize(rs.lights.size());
+    for (size_t l = 0; l < rs.lights.size(); ++l) {
       if (rs.lights[l].type != LightType::Directional) continue;
       const glm::dvec3 to = to_light(rs.lights[l], glm::dvec3(0.0));
       facing[l].resize(shades.size());
@@ -152,20 +201,15 @@ struct SurfaceRenderer::Impl {
         facing[l][t] = (g[0] * to.x + g[1] * to.y) + g[2] * to.z > 0 ? 1.f : 0.f;
       }
     }
-    if (!maps.empty()) make_lookups();
-    S.ms_shadows = ms_since(t);
-    for (int c = 0; c < 4; ++c) bg[c] = float(rs.background[c]);
-    S.ms_setup = ms_since(t_start);
   }
 
-  std::vector<MapLookup> lookups;
-  std::vector<std::vector<float>> facing;  // per light (directional ones), per projected triangle
-
+  // The directional maps' lookups from the pixels' camera-plane coordinates
+  // (lighting/map_lookup.h), with each triangle's face bias.
   void make_lookups() {
     lookups.resize(maps.size());
     for (size_t l = 0; l < maps.size(); ++l)
       if (rs.lights[l].type == LightType::Directional)
-        lookups[l] = map_lookup(view, maps[l], rs.lights[l], shades);
+        lookups[l] = map_lookup(view, maps[l], face_biases(maps[l], rs.lights[l], shades));
   }
 
   // One tile: z-buffer, then each covered pixel resolved once, a row (up to
