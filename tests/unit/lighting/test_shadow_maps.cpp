@@ -63,7 +63,7 @@ std::vector<float> step_map() {
   return z;
 }
 
-// Digest §2.6.5's table: the receiver's lit fraction at cells −2, −1, 0, +1
+// The shadow-maps digest §2.6.5 table: the receiver's lit fraction at cells −2, −1, 0, +1
 // of the edge (cells 14, 15, 16, 17 here), for 1-SM, 2-SM max/min, 3-SM.
 TEST(ShadowMaps, StepEdgeTableExactly) {
   struct Row {

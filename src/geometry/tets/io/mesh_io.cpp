@@ -7,7 +7,7 @@
 #include "geometry/tets/io/off_io.h"
 #include "geometry/tets/io/tetgen_io.h"
 #include "geometry/tets/io/vtk_io.h"
-#include "geometry/triangles/io/surface_reader.h"
+#include "geometry/triangles/surface_file.h"
 #include "base/util/file_error.h"
 #include "base/util/input_file.h"
 #include "base/util/atomic_file.h"

@@ -20,6 +20,7 @@
 #include <fstream>
 
 #include "geometry/tets/io/vtk_capture.h"
+#include "geometry/triangles/surface_file.h"
 #include "base/util/file_error.h"
 
 namespace zs {
@@ -27,27 +28,6 @@ namespace zs {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string lower_ext(const std::string& path) {
-  std::string e = fs::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return e;
-}
-
-// The first token of the first line that is neither blank nor a comment.
-std::string first_token(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  for (int n = 0; n < 64 && std::getline(in, line); ++n) {
-    size_t i = line.find_first_not_of(" \t\r");
-    if (i == std::string::npos || line[i] == '#') continue;
-    const size_t j = line.find_first_of(" \t\r", i);
-    return line.substr(i, j == std::string::npos ? std::string::npos : j - i);
-  }
-  return "";
-}
-
-bool off_keyword(const std::string& tok) { return tok.size() >= 3 && tok.compare(tok.size() - 3, 3, "OFF") == 0; }
 
 void check_file(const std::string& path) {
   std::error_code ec;
@@ -145,7 +125,7 @@ TriangleMesh read_with(const std::string& path, SurfaceReadCounts* counts) {
   r->Update();
   if (capture.has_error()) throw FileError(path, capture.first_error());
   vtkPolyData* pd = r->GetOutput();
-  if (!pd || pd->GetNumberOfPoints() == 0) throw FileError(path, "no points (not a valid " + lower_ext(path).substr(1) + " file?)");
+  if (!pd || pd->GetNumberOfPoints() == 0) throw FileError(path, "no points (not a valid " + lower_extension(path).substr(1) + " file?)");
   // VTK's readers keep out-of-range indices as they are; refuse them here.
   const vtkIdType np = pd->GetNumberOfPoints();
   if (vtkCellArray* polys = pd->GetPolys()) {
@@ -165,15 +145,9 @@ TriangleMesh read_with(const std::string& path, SurfaceReadCounts* counts) {
 
 }  // namespace
 
-bool is_surface_file(const std::string& path) {
-  const std::string e = lower_ext(path);
-  if (e == ".obj" || e == ".ply" || e == ".stl") return true;
-  return e == ".off" && off_keyword(first_token(path));
-}
-
 TriangleMesh read_surface(const std::string& path, SurfaceReadCounts* counts) {
   check_file(path);
-  const std::string e = lower_ext(path);
+  const std::string e = lower_extension(path);
   if (e == ".obj") return read_with<vtkOBJReader>(path, counts);
   if (e == ".ply") return read_with<vtkPLYReader>(path, counts);
   if (e == ".stl") return read_with<vtkSTLReader>(path, counts);

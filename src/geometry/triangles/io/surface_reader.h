@@ -8,13 +8,10 @@
 
 #include <string>
 
+#include "geometry/triangles/surface_file.h"  // is_surface_file
 #include "geometry/triangles/triangle_mesh.h"
 
 namespace zs {
-
-// True for a file name a surface reader takes: .obj, .ply, .stl, or a .off
-// file whose first token names an OFF surface. Does not read otherwise.
-bool is_surface_file(const std::string& path);
 
 struct SurfaceReadCounts {
   size_t polygons = 0;       // faces in the file (any corner count)

@@ -59,7 +59,7 @@ double max_diff(const Out& a, const Out& b) {
 }
 
 TEST(FragmentComposite, EqualAlphaStackReachesOneMinusPowerAndTheBoundOf32Layers) {
-  // f(n) = 1 − (1 − α)^n (digest §2.3.7), and the α that 32 layers need for t = 8.
+  // f(n) = 1 − (1 − α)^n (spheres digest §2.3.7), and the α that 32 layers need for t = 8.
   for (double a : {0.05, 0.121767, 0.5}) {
     double acc[4] = {0, 0, 0, 0};
     const double c[4] = {a, a, a, a};
