@@ -45,7 +45,12 @@ class SphereJob : public SceneJob {
   }
   std::unique_ptr<TiledRenderer> renderer(uint64_t extra_bytes, bool progress) override {
     srs_.progress = progress;
-    return std::make_unique<SphereRenderer>(in_.spheres, colors_, sgrid_, srs_, held_ + extra_bytes, ao_);
+    auto r = std::make_unique<SphereRenderer>(in_.spheres, colors_, sgrid_, srs_, held_ + extra_bytes, ao_);
+    if (ao_ && r->stats().ao_batches) {  // the maps left no room for the frame: batches from now on
+      ao_.reset();
+      srs_.ao.batches = true;
+    }
+    return r;
   }
   double total_ms(const TiledRenderer& r) const override { return of(r).stats().ms_total; }
   nlohmann::json stats(const TiledRenderer& r, const FrameReport& f) const override;

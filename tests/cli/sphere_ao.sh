@@ -6,7 +6,7 @@
 # within 0.01 (mean) of the same directions traced exactly, which is close to a
 # Monte Carlo AO; `reference --ao-samples` needs an ao scene; threads and tiles
 # change no bit; maps built in batches (a small --memory-budget) change no
-# bit; `occluders: "alpha"` lets translucent neighbours pass light (lighter
+# bit, and every budget above the smallest that renders renders the same; `occluders: "alpha"` lets translucent neighbours pass light (lighter
 # than opaque occluders, within 0.01 of the reference's exact transmittance);
 # AO in the translucent modes (each fragment × its AO) is within 0.01 of the
 # translucent reference; bad `ao` blocks fail in one line, naming the file,
@@ -134,6 +134,31 @@ if err > 1e-6:
     print("FAIL colour is not AO x shaded colour", err); bad = 1
 sys.exit(bad)
 PY
+
+# Every budget from the smallest that renders up renders too, and the same
+# image: the maps are held when they fit beside the frame's own set-up (the
+# visible list, the bins), else built in batches; never a budget error
+# between the two (1hpv at 200x160, 18 maps of 256²: 5 MiB once failed
+# although 4 MiB rendered). Needs pymol-data's 1hpv.
+pdb=/usr/share/pymol/data/tut/1hpv.pdb
+if [[ -f $pdb ]]; then
+  printf '{"spheres": "%s", "image": {"width": 200, "height": 160}, "ao": {"directions": 18, "map_size": 256}}\n' \
+    "$pdb" >"$tmp/hpv.json"
+  run "$tmp/hpv.json" -o "$tmp/hpv.exr"
+  first=""
+  for b in $(seq 2 1 12); do
+    if "$zsweep" render "$tmp/hpv.json" -o "$tmp/b$b.exr" --memory-budget "$b" >/dev/null 2>"$tmp/err"; then
+      [[ -z "$first" ]] && first=$b
+      "$zsweep" compare "$tmp/hpv.exr" "$tmp/b$b.exr" 2>&1 | grep -q "^max abs 0 " \
+        || { echo "FAIL --memory-budget $b changes the image"; fail=1; }
+    elif [[ -n "$first" ]]; then
+      echo "FAIL --memory-budget $b fails although $first rendered: $(cat "$tmp/err")"; fail=1
+    fi
+  done
+  [[ -n "$first" ]] || { echo "FAIL no budget up to 12 MiB renders 1hpv with AO"; fail=1; }
+else
+  echo "note: no $pdb (pymol-data); the budget sweep is left out"
+fi
 
 # Bad ao blocks: one line naming the file, non-zero exit, no output.
 bad() {  # name spheres ao-block extra expected-text

@@ -108,20 +108,22 @@ struct SphereRenderer::Impl {
     start_stats(ledger);
     hold_frame(ledger, extra_bytes, threads);
     ledger.check("the visible list", s.size() * 4);
-    if (rs.ao.directions) choose_ao(ledger, threads);
     std::vector<uint8_t> occluder;
     if (rs.mode != SphereMode::Opaque) occluder = occluders(ledger, threads);
     const std::vector<uint32_t> visible = visible_entries(std::move(occluder), ledger, threads);
     const auto t_bin = Clock::now();
     bins = bin_spheres(g, visible, view, grid, threads, ledger);
     setup.bin_entries = bins.ids.size();
+    setup.ms_binning = ms_since(t_bin);
+    // AO last: its maps (or batches) take what the view's own set-up leaves,
+    // so maps that fit never leave the visible list or the bins without room.
+    if (rs.ao.directions) choose_ao(ledger, threads);
     setup.shared_bytes = ledger.held();
     // What is left of the budget, per thread, for sorted's deeper k-buffer
     // passes (TranslucentTile::sorted), at most kMaxKbufBytes: enough for a
     // 64² tile 8192 fragments deep.
     const uint64_t base_kbuf = grid.max_tile_pixels() * TranslucentTile::kSortedLayers * 16;
     kbuf_bytes = std::max(base_kbuf, std::min(kMaxKbufBytes, ledger.left() / threads));
-    setup.ms_binning = ms_since(t_bin);
     setup.ms_setup = ms_since(t_start);
   }
 
@@ -159,6 +161,10 @@ struct SphereRenderer::Impl {
   // built by every frame, with the image's sums (sphere_ao.h).
   void choose_ao(MemoryLedger& ledger, int threads) {
     ao_dirs = ao_directions(rs.ao.directions);
+    // The caller's maps were sized before this frame's own holdings: where
+    // they no longer fit, an opaque frame builds them in batches instead
+    // (the stats say so; the caller then lets its maps go).
+    if (ao && ao->bytes > ledger.left() && rs.mode == SphereMode::Opaque) ao.reset();
     if (!ao && !rs.ao.batches) {
       ao = sphere_ao_maps(s, colors, rs, ledger.left());  // null: they do not all fit
       if (ao) setup.ms_ao_maps = ao->ms_build;
