@@ -9,7 +9,7 @@
 
 #include "fuzz_sphere_check.h"
 #include "base/util/file_error.h"
-#include "geometry/spheres/pdb_reader.h"
+#include "geometry/spheres/molecule_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <filesystem>
 
-#include "geometry/spheres/pdb_reader.h"
+#include "geometry/spheres/molecule_reader.h"
 #include "geometry/spheres/sphere_binary.h"
 #include "geometry/spheres/sphere_reader.h"
 #include "geometry/spheres/sphere_writer.h"
@@ -24,17 +24,17 @@ std::string lower_extension(const std::string& path) {
 
 bool is_sphere_file(const std::string& path) {
   const std::string e = lower_extension(path);
-  return e == ".pdb" || e == ".ent" || e == ".sph" || e == ".sphb";
+  return e == ".sph" || e == ".sphb" || is_molecule_file(path);
 }
 
-SphereSet read_sphere_file(const std::string& path) {
+SphereSet read_sphere_file(const std::string& path, const MoleculeOptions& molecule) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw FileError(path, "no such file");
   const std::string e = lower_extension(path);
   if (e == ".sph") return read_spheres(path);
   if (e == ".sphb") return read_spheres_binary(path);
-  if (e == ".pdb" || e == ".ent") return read_pdb(path);
-  throw FileError(path, "unknown sphere format (expected .pdb, .ent, .sph or .sphb)");
+  if (is_molecule_file(path)) return read_molecule(path, molecule);
+  throw FileError(path, "unknown sphere format (expected .pdb, .ent, .cif, .mmcif (each also .gz), .sph or .sphb)");
 }
 
 void write_spheres(const std::string& path, const SphereSet& s) {

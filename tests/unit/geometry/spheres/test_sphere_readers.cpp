@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "base/util/file_error.h"
-#include "geometry/spheres/pdb_reader.h"
+#include "geometry/spheres/molecule_reader.h"
 #include "geometry/spheres/sphere_colors.h"
 #include "geometry/spheres/sphere_io.h"
 #include "geometry/spheres/sphere_reader.h"
@@ -157,8 +157,11 @@ TEST(PdbReader, FirstModelOnlyAndFirstAlternateLocation) {
   ASSERT_EQ(s.size(), 2u);
   EXPECT_EQ(s.centres[1], glm::dvec3(2, 2, 2));
   EXPECT_EQ(s.skipped, 1u);
-  ASSERT_EQ(s.notes.size(), 1u);
+  ASSERT_EQ(s.notes.size(), 2u);
   EXPECT_EQ(s.notes[0], "1 alternate locations skipped (kept 'A')");
+  EXPECT_EQ(s.notes[1], "model 1 of 2");
+  EXPECT_EQ(s.molecule.models, 2u);
+  EXPECT_EQ(s.molecule.altlocs_left_out, 1u);
 }
 
 TEST(PdbReader, NoScalarWhenAnAtomLacksItsBFactor) {
@@ -184,7 +187,8 @@ TEST(PdbReader, ErrorsNameFileAndLine) {
   bad.replace(30, 8, "        ");
   EXPECT_EQ(pdb_error(bad), "p.pdb:1: HETATM: x coordinate '' is not a number (columns 31-38)");
   EXPECT_EQ(pdb_error("HEADER    EMPTY\nEND\n"), "p.pdb: no ATOM or HETATM records in model 1");
-  EXPECT_EQ(pdb_error("ENDMDL\n" + ok), "p.pdb: no ATOM or HETATM records in model 1");
+  // A stray ENDMDL before the first atom ends no model (gemmi reads on).
+  EXPECT_EQ(parse_pdb("ENDMDL\n" + ok, "p.pdb").size(), 1u);
 }
 
 TEST(SphereIo, ReadsFilesByExtension) {
@@ -228,7 +232,7 @@ TEST(PdbReader, ReadsPymolDataFile) {
     if (alt != ' ' && first_alt == ' ') first_alt = alt;
     if (alt != ' ' && alt != first_alt) ++other_alt;
   }
-  const SphereSet s = read_pdb(path);
+  const SphereSet s = read_molecule(path);
   ASSERT_GT(atoms, 10u) << path;
   EXPECT_EQ(s.size() + s.skipped, atoms) << path;
   EXPECT_EQ(s.skipped, other_alt) << path;

@@ -1,0 +1,256 @@
+// Molecules through gemmi (molecule_reader.h). gemmi is header-only here
+// (Debian's gemmi-dev 0.5.7): this file alone includes it, so only it pays
+// for its templates. PDB text is checked and cleaned by its fixed columns
+// first (pdb_columns.h); mmCIF goes to gemmi as it is.
+#include "geometry/spheres/molecule_reader.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+
+#include <gemmi/gz.hpp>
+#include <gemmi/cif.hpp>
+#include <gemmi/mmcif.hpp>
+#include <gemmi/pdb.hpp>
+
+#include "base/util/file_error.h"
+#include "base/util/text_lines.h"
+#include "geometry/spheres/elements.h"
+#include "geometry/spheres/pdb_columns.h"
+#include "geometry/spheres/vdw_radii.h"
+
+namespace zs {
+
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+
+// The extension that says the format, below a ".gz".
+std::string format_extension(const std::string& path) {
+  std::string p = lower(path);
+  if (p.size() > 3 && p.ends_with(".gz")) p.resize(p.size() - 3);
+  return std::filesystem::path(p).extension().string();
+}
+
+// gemmi's "Problem in line N: what" as FileError(name, N, what); other
+// messages whole.
+[[noreturn]] void rethrow_gemmi(const std::string& name, const std::string& msg) {
+  const std::string head = "Problem in line ";
+  if (msg.starts_with(head)) {
+    size_t end = head.size(), line = 0;
+    while (end < msg.size() && std::isdigit(static_cast<unsigned char>(msg[end]))) line = line * 10 + (msg[end++] - '0');
+    if (line && msg.compare(end, 2, ": ") == 0) throw FileError(name, line, msg.substr(end + 2));
+  }
+  std::string m = msg;
+  if (m.starts_with(name + ":")) m = m.substr(name.size() + 1);  // PEGTL: "name:line:col: ..."
+  while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
+  const size_t nl = m.find('\n');
+  throw FileError(name, nl == std::string::npos ? m : m.substr(0, nl));
+}
+
+// Residue classes of the twenty standard amino acids by side chain
+// (docs/spheres.md, "Colours"); other residues by gemmi's residue table.
+ResidueClass residue_class(const gemmi::Residue& r) {
+  static const std::map<std::string, ResidueClass> kAmino = {
+      {"ALA", ResidueClass::Hydrophobic}, {"VAL", ResidueClass::Hydrophobic}, {"LEU", ResidueClass::Hydrophobic},
+      {"ILE", ResidueClass::Hydrophobic}, {"MET", ResidueClass::Hydrophobic}, {"PHE", ResidueClass::Hydrophobic},
+      {"TRP", ResidueClass::Hydrophobic}, {"PRO", ResidueClass::Hydrophobic}, {"GLY", ResidueClass::Hydrophobic},
+      {"SER", ResidueClass::Polar},       {"THR", ResidueClass::Polar},       {"ASN", ResidueClass::Polar},
+      {"GLN", ResidueClass::Polar},       {"CYS", ResidueClass::Polar},       {"TYR", ResidueClass::Polar},
+      {"ASP", ResidueClass::Acidic},      {"GLU", ResidueClass::Acidic},      {"LYS", ResidueClass::Basic},
+      {"ARG", ResidueClass::Basic},       {"HIS", ResidueClass::Basic}};
+  if (auto it = kAmino.find(r.name); it != kAmino.end()) return it->second;
+  if (r.is_water()) return ResidueClass::Water;
+  const gemmi::ResidueInfo info = gemmi::find_tabulated_residue(r.name);
+  if (info.is_amino_acid()) return ResidueClass::OtherAminoAcid;
+  if (info.is_nucleic_acid()) return ResidueClass::Nucleic;
+  return ResidueClass::Other;
+}
+
+// gemmi keeps B-factors as float; the double a user wrote ("7.69") is the
+// shortest decimal that gives that float back, read as a double, so B-factor
+// colours are the ones the text says (and PDB and mmCIF of one structure agree).
+double written_value(float f) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, f);
+  double d = f;
+  std::from_chars(buf, r.ptr, d);
+  return d;
+}
+
+std::string count_note(size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+const gemmi::Model& choose_model(const gemmi::Structure& st, const MoleculeOptions& opt, const std::string& name) {
+  if (st.models.empty()) throw FileError(name, "no model");
+  if (opt.model.empty()) return st.models.front();
+  for (const gemmi::Model& m : st.models)
+    if (m.name == opt.model) return m;
+  std::string have;
+  for (size_t i = 0; i < st.models.size() && i < 8; ++i) have += (i ? ", " : "") + st.models[i].name;
+  if (st.models.size() > 8) have += ", ...";
+  throw FileError(name, "no model " + opt.model + " (the file has " + count_note(st.models.size(), "model", "models") +
+                            ": " + have + ")");
+}
+
+// The chosen model's atoms as spheres, with the counts mesh info prints.
+SphereSet spheres_of(const gemmi::Structure& st, const MoleculeOptions& opt, const std::string& name) {
+  const gemmi::Model& model = choose_model(st, opt, name);
+  SphereSet s;
+  MoleculeCounts& c = s.molecule;
+  c.models = st.models.size();
+  c.model = model.name;
+  std::map<std::string, size_t> by_element;
+  char first_alt = 0;
+  for (const gemmi::Chain& ch : model.chains) {
+    uint16_t chain_id = 0;
+    bool chain_used = false;
+    for (const gemmi::Residue& res : ch.residues) {
+      const ResidueClass rc = residue_class(res);
+      bool residue_used = false;
+      for (const gemmi::Atom& a : res.atoms) {
+        if (a.altloc) {  // the first alternate location the file names, as before gemmi
+          if (!first_alt) first_alt = a.altloc;
+          if (a.altloc != first_alt) {
+            ++s.skipped;
+            continue;
+          }
+        }
+        if (res.is_water() && !opt.waters) {
+          ++c.waters_left_out;
+          continue;
+        }
+        if (a.is_hydrogen() && !opt.hydrogens) {
+          ++c.hydrogens_left_out;
+          continue;
+        }
+        if (!chain_used) {
+          chain_used = true;
+          auto it = std::find(s.chain_names.begin(), s.chain_names.end(), ch.name);
+          chain_id = uint16_t(std::min<size_t>(it - s.chain_names.begin(), 65535));
+          if (it == s.chain_names.end()) s.chain_names.push_back(ch.name);
+        }
+        residue_used = true;
+        const std::string symbol = a.element == gemmi::El::X ? "" : a.element.name();
+        double radius = kDefaultVdwRadius;
+        if (!vdw_radius(symbol, radius)) ++c.unknown_elements;
+        s.centres.push_back({a.pos.x, a.pos.y, a.pos.z});
+        s.radii.push_back(radius);
+        s.scalars.push_back(written_value(a.b_iso));
+        s.element.push_back(static_cast<uint8_t>(atomic_number(symbol)));
+        s.chain.push_back(chain_id);
+        s.residue_class.push_back(rc);
+        ++by_element[symbol.empty() ? "?" : symbol];
+        if (res.is_water()) ++c.waters;
+        if (a.is_hydrogen()) ++c.hydrogens;
+      }
+      if (residue_used) ++c.residues;
+    }
+  }
+  c.atoms = s.size();
+  c.chains = s.chain_names.size();
+  c.altlocs_left_out = s.skipped;
+  c.elements.assign(by_element.begin(), by_element.end());
+  std::stable_sort(c.elements.begin(), c.elements.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (s.skipped)
+    s.notes.push_back(std::to_string(s.skipped) + " alternate locations skipped (kept '" + std::string(1, first_alt) +
+                      "')");
+  return s;
+}
+
+}  // namespace
+
+bool is_molecule_file(const std::string& path) {
+  const std::string e = format_extension(path);
+  return e == ".pdb" || e == ".ent" || e == ".cif" || e == ".mmcif";
+}
+
+SphereSet parse_molecule(std::string_view text, const std::string& name, MoleculeFormat format,
+                         const MoleculeOptions& opt) {
+  gemmi::Structure st;
+  PdbText pdb;
+  if (format == MoleculeFormat::Pdb) {
+    pdb = prepare_pdb_text(text, name);
+    if (!pdb.atoms) throw FileError(name, "no ATOM or HETATM records in model 1");
+    try {
+      st = gemmi::read_pdb_string(pdb.text, name);
+    } catch (const std::runtime_error& e) {
+      rethrow_gemmi(name, e.what());
+    }
+  } else {
+    try {
+      st = gemmi::make_structure(gemmi::cif::read_memory(text.data(), text.size(), name.c_str()));
+    } catch (const std::runtime_error& e) {
+      rethrow_gemmi(name, e.what());
+    }
+  }
+  SphereSet s = spheres_of(st, opt, name);
+  if (s.centres.empty()) {
+    if (opt.model.empty() && !s.molecule.waters_left_out && !s.molecule.hydrogens_left_out)
+      throw FileError(name, format == MoleculeFormat::Pdb ? "no ATOM or HETATM records in model 1"
+                                                          : "no atoms in the first model");
+    throw FileError(name, "no atoms left in model " + s.molecule.model +
+                              (s.molecule.waters_left_out || s.molecule.hydrogens_left_out
+                                   ? " once waters and hydrogens are left out" : ""));
+  }
+  // Notes, in the order the tests and `mesh info` read them: B-factor,
+  // radius, alternate locations (spheres_of), then what gemmi inferred.
+  std::vector<std::string> notes;
+  if (format == MoleculeFormat::Pdb && pdb.line_without_b) {
+    s.scalars.clear();
+    notes.push_back("no B-factor (columns 61-66) on line " + std::to_string(pdb.line_without_b) + ": no scalar");
+  } else {
+    s.scalar_name = "b_factor";
+    for (double v : s.scalars)
+      if (!std::isfinite(v)) ++s.degenerate;
+  }
+  if (s.molecule.unknown_elements) {
+    char r[32];
+    std::snprintf(r, sizeof r, "%g", kDefaultVdwRadius);
+    notes.push_back(std::to_string(s.molecule.unknown_elements) + " atoms of an element without a tabulated radius: " +
+                    r + " Å");
+  }
+  notes.insert(notes.end(), s.notes.begin(), s.notes.end());
+  if (format == MoleculeFormat::Pdb) {
+    s.molecule.element_columns_cleared = pdb.element_cleared;
+    s.molecule.charge_columns_cleared = pdb.charge_cleared;
+    s.molecule.elements_inferred = pdb.element_blank;
+    if (pdb.element_cleared || pdb.charge_cleared)
+      notes.push_back(count_note(std::max(pdb.element_cleared, pdb.charge_cleared), "record", "records") +
+                      " with no element and charge in columns 77-80 (they held other text, e.g. a segment id and "
+                      "line number): elements from the atom names");
+  }
+  if (s.molecule.waters_left_out) notes.push_back(count_note(s.molecule.waters_left_out, "water atom", "water atoms") + " left out");
+  if (s.molecule.hydrogens_left_out) notes.push_back(count_note(s.molecule.hydrogens_left_out, "hydrogen", "hydrogens") + " left out");
+  if (s.molecule.models > 1)
+    notes.push_back("model " + s.molecule.model + " of " + std::to_string(s.molecule.models));
+  s.notes = std::move(notes);
+  return s;
+}
+
+SphereSet read_molecule(const std::string& path, const MoleculeOptions& opt) {
+  const std::string e = format_extension(path);
+  const MoleculeFormat format = (e == ".cif" || e == ".mmcif") ? MoleculeFormat::Mmcif : MoleculeFormat::Pdb;
+  if (lower(path).ends_with(".gz")) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) throw FileError(path, "no such file");
+    gemmi::CharArray mem;
+    try {
+      mem = gemmi::MaybeGzipped(path).uncompress_into_buffer();
+    } catch (const std::runtime_error& err) {
+      rethrow_gemmi(path, err.what());
+    }
+    return parse_molecule(std::string_view(mem.data(), mem.size()), path, format, opt);
+  }
+  return parse_molecule(read_text_file(path), path, format, opt);
+}
+
+}  // namespace zs
