@@ -267,7 +267,9 @@ def render(scene=None, channels=None, **options):
     a dict with "RGBA" and one (height, width) float32 array per channel.
     Options are the command line's: width, height, threads, projection,
     memory_budget (MiB), scan, variant, integrator, precision,
-    early_termination, max_list_length, tile_size, no_culling, frames.
+    early_termination, max_list_length, tile_size, no_culling, frames; for
+    molecule files (.pdb, .ent, .cif, .mmcif, and .gz), as the scene's
+    spheres keys: model (a MODEL number), waters=False, hydrogens=False.
     Raises ValueError for bad arrays, RuntimeError with the command line's
     one-line message for bad input; Ctrl-C stops the render.
     """

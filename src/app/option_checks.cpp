@@ -99,7 +99,7 @@ void check_every_number(CLI::App& app) {
 
 namespace {
 
-constexpr unsigned kV = 1, kS = 2, kF = 4;
+constexpr unsigned kV = 1, kS = 2, kF = 4, kM = 8;  // kM: molecule files (sphere sets too)
 
 struct Scope {
   const char* option;
@@ -113,9 +113,19 @@ constexpr Scope kScopes[] = {
     {"--variant", kV},    {"--integrator", kV},   {"--precision", kV},
     {"--early-termination", kV}, {"--max-list-length", kV},
     {"--no-culling", kS | kF}, {"--ao-samples", kS},
+    {"--model", kM},      {"--no-waters", kM},    {"--no-hydrogens", kM},
 };
 
-unsigned bit(SceneKind k) { return k == SceneKind::Volume ? kV : k == SceneKind::Spheres ? kS : kF; }
+// Python keywords that are not the command-line name with '_' for '-'.
+struct PythonName {
+  const char* option;
+  const char* keyword;
+};
+constexpr PythonName kPythonNames[] = {{"--no-waters", "waters"}, {"--no-hydrogens", "hydrogens"}};
+
+unsigned bits(SceneKind k, bool molecule) {
+  return k == SceneKind::Volume ? kV : k == SceneKind::Spheres ? kS | (molecule ? kM : 0) : kF;
+}
 
 const char* kind_name(SceneKind k) {
   return k == SceneKind::Volume ? "a tet mesh" : k == SceneKind::Spheres ? "a sphere set" : "a surface scene";
@@ -123,9 +133,9 @@ const char* kind_name(SceneKind k) {
 
 std::string kinds_name(unsigned kinds) {
   std::string s;
-  const char* names[] = {"tet meshes", "sphere sets", "surfaces"};
+  const char* names[] = {"tet meshes", "sphere sets", "surfaces", "molecule files (.pdb, .ent, .cif, .mmcif)"};
   int n = 0;
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < 4; ++i)
     if (kinds & (1u << i)) s += (n++ ? " and " : "") + std::string(names[i]);
   return s;
 }
@@ -134,16 +144,19 @@ std::string kinds_name(unsigned kinds) {
 
 std::string option_name(const std::string& cli_name, bool python) {
   if (!python) return cli_name;
+  for (const PythonName& p : kPythonNames)
+    if (cli_name == p.option) return p.keyword;
   std::string s = cli_name.substr(cli_name.find_first_not_of('-'));
   for (char& c : s)
     if (c == '-') c = '_';
   return s;
 }
 
-void check_option_scope(const std::vector<std::string>& given, SceneKind kind, const std::string& input, bool python) {
+void check_option_scope(const std::vector<std::string>& given, SceneKind kind, const std::string& input, bool python,
+                        bool molecule) {
   for (const std::string& g : given)
     for (const Scope& s : kScopes)
-      if (g == s.option && !(s.kinds & bit(kind)))
+      if (g == s.option && !(s.kinds & bits(kind, molecule)))
         throw UsageError(input + ": " + option_name(g, python) + " applies to " + kinds_name(s.kinds) +
                                  " only, and this is " + kind_name(kind));
 }

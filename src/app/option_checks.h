@@ -60,10 +60,12 @@ void check_every_number(CLI::App& app);
 // `given`: the options the user set, by their command-line name
 // ("--integrator"); `input`: how to name the input in the message. Throws
 // UsageError "INPUT: --integrator applies to tet meshes, not to a
-// sphere set". `python`: name options as the module's keywords.
+// sphere set". `python`: name options as the module's keywords. `molecule`:
+// the sphere set is a molecule file (--model, --no-waters, --no-hydrogens).
 void check_option_scope(const std::vector<std::string>& given, SceneKind kind, const std::string& input,
-                        bool python = false);
-// "--max-list-length" -> "max_list_length" when `python`.
+                        bool python = false, bool molecule = false);
+// "--max-list-length" -> "max_list_length" when `python` ("--no-waters" ->
+// "waters": the keyword is the scene's key).
 std::string option_name(const std::string& cli_name, bool python);
 
 }  // namespace zs

@@ -43,6 +43,9 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
   cmd.add_option("--projection", projection, "Automatic camera: orthographic (default) or perspective");
   cmd.add_option("--memory-budget", memory_budget_mb, "Memory budget in MiB (default: half of physical memory)")
       ->check(range("--memory-budget"));
+  cmd.add_option("--model", molecule.model, "Molecule files: the MODEL to read (its number; default: the first)");
+  cmd.add_flag("--no-waters", molecule.no_waters, "Molecule files: leave out water molecules");
+  cmd.add_flag("--no-hydrogens", molecule.no_hydrogens, "Molecule files: leave out hydrogen atoms");
   if (!engine_knobs) return;
   cmd.add_option("--scan", scan, "Scan strategy: span (default), bbox (same image, slower), bconvert");
   cmd.add_option("--variant", variant, "B-Convert variant (with --scan bconvert): truncate, round, dilate, dda3d, runlength");
@@ -65,7 +68,7 @@ void SceneArgs::check_before_load() const {
   const SceneKind kind = is_sphere_file(input)    ? SceneKind::Spheres
                          : is_surface_file(input) ? SceneKind::Surfaces
                                                   : SceneKind::Volume;
-  check_option_scope(given(), kind, input, python);
+  check_option_scope(given(), kind, input, python, is_molecule_file(input));
   const MeshFormat f = format_of(input);
   if (kind == SceneKind::Volume && !opt.q_path.empty() && f != MeshFormat::Plot3d && f != MeshFormat::Unknown)
     throw UsageError(input + ": " + option_name("--q", python) + " applies to PLOT3D grids only, and this is a " +
@@ -74,7 +77,7 @@ void SceneArgs::check_before_load() const {
 
 SceneInput SceneArgs::load() const {
   check_before_load();  // before any file is read
-  SceneInput in = load_scene_input(input, opt);
+  SceneInput in = load_scene_input(input, opt, molecule);
   apply(in);
   return in;
 }
@@ -92,6 +95,9 @@ std::vector<std::string> SceneArgs::given() const {
   add(!precision.empty(), "--precision");
   add(early_termination >= 0, "--early-termination");
   add(max_list_length >= 0, "--max-list-length");
+  add(!molecule.model.empty(), "--model");
+  add(molecule.no_waters, "--no-waters");
+  add(molecule.no_hydrogens, "--no-hydrogens");
   return g;
 }
 
@@ -116,7 +122,8 @@ void SceneArgs::apply(SceneInput& in, const std::string& input_name) const {
   const std::string who = !input_name.empty() ? input_name : !input.empty() ? input : "the default scene";
   auto name = [&](const char* o) { return option_name(o, python); };
   // Options that do not apply to this input would be ignored without a word.
-  check_option_scope(given(), in.scene.kind, who, python);
+  check_option_scope(given(), in.scene.kind, who, python,
+                     in.scene.kind == SceneKind::Spheres && is_molecule_file(in.scene.spheres.path));
   const bool bare_mesh = !input.empty() && in.scene.kind == SceneKind::Volume && in.scene.mesh_path == input;
   if ((!opt.scalar.empty() || !opt.q_path.empty()) && !bare_mesh)
     throw UsageError(who + ": " + name(!opt.scalar.empty() ? "--scalar" : "--q") + " applies to a mesh file; " +

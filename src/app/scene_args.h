@@ -38,6 +38,7 @@ struct SceneArgs {
   double early_termination = -1;
   int64_t max_list_length = -1;
   uint32_t tile_size = 0;  // 0 = the engine's default
+  MoleculeOverrides molecule;  // --model, --no-waters, --no-hydrogens (molecule files)
   // Options of the caller's own that apply to some input kinds only
   // ("--no-culling", "--ao-samples"), checked with these.
   std::vector<std::string> also_given;

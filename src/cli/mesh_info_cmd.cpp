@@ -1,5 +1,5 @@
 // `zsweep mesh info [MESH] [--json]`: counts, topology and validation report;
-// for sphere files (.pdb/.ent/.sph/.sphb) the sphere report of sphere_info.h,
+// for sphere files (molecules, .sph, .sphb) the sphere report of sphere_info.h,
 // for triangle surfaces the surface report of surface_info.h.
 #include <algorithm>
 #include <chrono>
@@ -8,6 +8,8 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -30,6 +32,20 @@ struct InfoArgs {
   MeshSource src;
   bool json = false;
   double eps = 1e-10;
+  MoleculeOptions molecule;
+  bool no_waters = false, no_hydrogens = false;
+
+  // --model, --no-waters, --no-hydrogens apply to molecule files only.
+  void check_molecule_options() const {
+    std::vector<std::string> given;
+    if (!molecule.model.empty()) given.push_back("--model");
+    if (no_waters) given.push_back("--no-waters");
+    if (no_hydrogens) given.push_back("--no-hydrogens");
+    const SceneKind kind = is_sphere_file(src.path)    ? SceneKind::Spheres
+                           : is_surface_file(src.path) ? SceneKind::Surfaces
+                                                       : SceneKind::Volume;
+    check_option_scope(given, kind, src.display_name(), false, is_molecule_file(src.path));
+  }
 };
 
 void print_text(const std::string& name, const TetMesh& m, const Topology& t, const ValidationReport& r,
@@ -115,12 +131,19 @@ void add_mesh_info_command(CLI::App& mesh) {
   CLI::Option* eps = cmd->add_option("--zero-volume-eps", args->eps, "Relative epsilon for zero-volume tets (|6V| <= eps*L^3)")
       ->capture_default_str()
       ->check(number_check(real_range(0, INFINITY)));
+  cmd->add_option("--model", args->molecule.model, "Molecule files: the MODEL to read (its number; default: the first)");
+  cmd->add_flag("--no-waters", args->no_waters, "Molecule files: leave out water molecules");
+  cmd->add_flag("--no-hydrogens", args->no_hydrogens, "Molecule files: leave out hydrogen atoms");
   cmd->callback([args, eps] {
     args->src.check_applies();
+    args->check_molecule_options();
     if (is_sphere_file(args->src.path)) {
       if (eps->count())
         throw UsageError(args->src.path + ": --zero-volume-eps applies to tet meshes only, and this is a sphere set");
-      return print_sphere_info(args->src.path, args->json);
+      MoleculeOptions m = args->molecule;
+      m.waters = !args->no_waters;
+      m.hydrogens = !args->no_hydrogens;
+      return print_sphere_info(args->src.path, args->json, m);
     }
     if (is_surface_file(args->src.path)) {
       if (eps->count())

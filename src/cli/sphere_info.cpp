@@ -5,16 +5,82 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
 #include "geometry/spheres/sphere_io.h"
+#include "geometry/spheres/vdw_radii.h"
 
 namespace zs {
 
-void print_sphere_info(const std::string& path, bool json) {
-  const SphereSet s = read_sphere_file(path);  // never empty: the readers refuse that
+namespace {
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string out;
+  for (const std::string& x : v) out += (out.empty() ? "" : ", ") + x;
+  return out;
+}
+
+// "C 1003, O 356, N 263, S 9" (most first; "?" for atoms without an element).
+std::string element_counts(const MoleculeCounts& m) {
+  std::vector<std::string> parts;
+  for (const auto& [symbol, n] : m.elements) parts.push_back(symbol + " " + std::to_string(n));
+  return joined(parts);
+}
+
+nlohmann::json molecule_json(const SphereSet& s) {
+  const MoleculeCounts& m = s.molecule;
+  nlohmann::json elements = nlohmann::json::object();
+  for (const auto& [symbol, n] : m.elements) elements[symbol] = n;
+  return {
+      {"atoms", m.atoms},
+      {"elements", elements},
+      {"chains", s.chain_names},
+      {"residues", m.residues},
+      {"models", m.models},
+      {"model", m.model},
+      {"waters", m.waters},
+      {"hydrogens", m.hydrogens},
+      {"inferred", {{"elements_from_atom_names", m.elements_inferred},
+                    {"element_columns_cleared", m.element_columns_cleared},
+                    {"charge_columns_cleared", m.charge_columns_cleared}}},
+      {"left_out", {{"altlocs", m.altlocs_left_out}, {"waters", m.waters_left_out},
+                    {"hydrogens", m.hydrogens_left_out}}},
+      {"unknown_elements", m.unknown_elements},
+      {"unknown_element_radius", kDefaultVdwRadius},
+  };
+}
+
+void print_molecule(const SphereSet& s) {
+  const MoleculeCounts& m = s.molecule;
+  auto line = [](const char* key, const std::string& v) { std::printf("%-27s %s\n", key, v.c_str()); };
+  auto n = [](size_t v) { return std::to_string(v); };
+  char r[32];
+  std::snprintf(r, sizeof r, "%g", kDefaultVdwRadius);
+  line("atoms:", n(m.atoms));
+  line("elements:", element_counts(m));
+  std::vector<std::string> chains = s.chain_names;
+  for (std::string& c : chains)
+    if (c.empty()) c = "(blank)";
+  line("chains:", n(m.chains) + (chains.empty() ? "" : " (" + joined(chains) + ")"));
+  line("residues:", n(m.residues));
+  line("models:", n(m.models) + " (read: " + (m.model.empty() ? "the first" : m.model) + ")");
+  line("waters:", n(m.waters) + " atoms" + (m.waters_left_out ? " (" + n(m.waters_left_out) + " left out)" : ""));
+  line("hydrogens:", n(m.hydrogens) + (m.hydrogens_left_out ? " (" + n(m.hydrogens_left_out) + " left out)" : ""));
+  line("inferred:", n(m.elements_inferred) + " elements from atom names; columns 77-80 cleared on " +
+                        n(std::max(m.element_columns_cleared, m.charge_columns_cleared)) + " records");
+  line("left out:", n(m.altlocs_left_out) + " alternate locations, " + n(m.waters_left_out) + " water atoms, " +
+                        n(m.hydrogens_left_out) + " hydrogens");
+  line("unknown elements:", n(m.unknown_elements) + " (drawn at " + r + " Å)");
+}
+
+}  // namespace
+
+void print_sphere_info(const std::string& path, bool json, const MoleculeOptions& molecule) {
+  const SphereSet s = read_sphere_file(path, molecule);  // never empty: the readers refuse that
   const double inf = std::numeric_limits<double>::infinity();
   glm::dvec3 lo(inf), hi(-inf);
   for (const glm::dvec3& c : s.centres) lo = glm::min(lo, c), hi = glm::max(hi, c);
@@ -35,6 +101,7 @@ void print_sphere_info(const std::string& path, bool json) {
                                    : nlohmann::json(nullptr)},
         {"notes", s.notes},
     };
+    if (s.is_molecule()) j["molecule"] = molecule_json(s);
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -55,7 +122,11 @@ void print_sphere_info(const std::string& path, bool json) {
   } else {
     line("scalar:", "none");
   }
-  line("colours:", s.has_rgba() ? "rgba" : s.has_elements() ? "by element" : "none");
+  if (s.is_molecule()) print_molecule(s);
+  line("colours:", s.has_rgba()       ? "rgba"
+                   : s.is_molecule()  ? "by element (also: chain, residue, scalar)"
+                   : s.has_elements() ? "by element"
+                                      : "none");
   for (const std::string& note : s.notes) line("note:", note);
 }
 

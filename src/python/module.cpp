@@ -102,6 +102,25 @@ struct Options {
   int frames = 1;
 };
 
+// model=2 or model="2": a MODEL number, as the scene's spheres.model.
+std::string model_number(const py::handle& v) {
+  if (py::isinstance<py::bool_>(v)) throw py::type_error("model must be a whole number or a string, not bool");
+  if (py::isinstance<py::int_>(v)) {
+    const long long n = v.cast<long long>();
+    if (n < 0) throw py::value_error("model: " + std::to_string(n) + " is not a model number");
+    return std::to_string(n);
+  }
+  if (py::isinstance<py::str>(v) && !v.cast<std::string>().empty()) return v.cast<std::string>();
+  throw py::type_error("model must be a whole number or a string, not " +
+                       std::string(py::str(v.get_type().attr("__name__"))));
+}
+
+bool flag(const py::handle& v, const std::string& k) {
+  if (!py::isinstance<py::bool_>(v))
+    throw py::type_error(k + " must be True or False, not " + std::string(py::str(v.get_type().attr("__name__"))));
+  return v.cast<bool>();
+}
+
 Options options_from(const py::dict& o) {
   Options out;
   SceneArgs& a = out.args;
@@ -135,6 +154,9 @@ Options options_from(const py::dict& o) {
     else if (k == "tile_size") a.tile_size = uint32_t(scene_number("--tile-size"));
     else if (k == "scalar") a.opt.scalar = v.cast<std::string>();
     else if (k == "q") a.opt.q_path = v.cast<std::string>();
+    else if (k == "model") a.molecule.model = model_number(v);
+    else if (k == "waters") a.molecule.no_waters = !flag(v, k);
+    else if (k == "hydrogens") a.molecule.no_hydrogens = !flag(v, k);
     else if (k == "no_culling") out.no_culling = v.cast<bool>();
     else if (k == "frames") out.frames = int(number(whole_range(1, 100000)));
     else throw py::type_error("render() got an unexpected option '" + k + "'");
@@ -154,7 +176,8 @@ std::unique_ptr<SceneInput> load(const std::string& text, const std::string& nam
     // for the embedded default scene, as on the command line.
     if (text.empty()) o.args.input = name;  // a bare file, as `zsweep render FILE`
     o.args.check_before_load();
-    *in = text.empty() ? load_scene_input(name, o.args.opt) : load_scene_input_text(text, name, base_dir, sd);
+    *in = text.empty() ? load_scene_input(name, o.args.opt, o.args.molecule)
+                       : load_scene_input_text(text, name, base_dir, sd, o.args.molecule);
     o.args.apply(*in, name.empty() ? "the default scene" : name);
   });
   return in;

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene_json.h"
+#include "geometry/spheres/molecule_reader.h"
 #include "base/util/input_file.h"
 #include "lighting/ao_directions.h"
 
@@ -84,6 +85,28 @@ std::vector<OpacityPoint> opacities(const Ctx& c, const json& v) {
   return out;
 }
 
+// spheres.model, .waters and .hydrogens: what is read of a molecule file.
+void parse_molecule_keys(const Ctx& c, const json& v, SphereScene* sp) {
+  MoleculeOptions& m = sp->molecule;
+  for (const char* k : {"model", "waters", "hydrogens"})
+    if (v.contains(k) && !is_molecule_file(sp->path))
+      c.fail(std::string("spheres.") + k + " applies to molecule files (.pdb, .ent, .cif, .mmcif and their .gz), and " +
+             sp->path + " is not one");
+  if (v.contains("model")) {
+    const json& x = v["model"];
+    if (x.is_number_unsigned()) m.model = std::to_string(x.get<uint64_t>());
+    else if (x.is_string() && !x.get<std::string>().empty()) m.model = x.get<std::string>();
+    else c.fail("spheres.model must be a model number (a whole number or a string, as the file's MODEL record names it)");
+  }
+  auto flag = [&](const char* k, bool* out) {
+    if (!v.contains(k)) return;
+    if (!v[k].is_boolean()) c.fail(std::string("spheres.") + k + " must be true or false");
+    *out = v[k].get<bool>();
+  };
+  flag("waters", &m.waters);
+  flag("hydrogens", &m.hydrogens);
+}
+
 // `spheres`, `shading` and the sphere `render` keys (docs/spheres.md).
 void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
   SphereScene& sp = s->spheres;
@@ -91,16 +114,17 @@ void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
   if (v.is_string()) {
     sp.path = c.resolve(v.get<std::string>());
   } else {
-    check_keys(c, v, "spheres", {"path", "radius_scale", "color"});
+    check_keys(c, v, "spheres", {"path", "radius_scale", "color", "model", "waters", "hydrogens"});
     if (!v.contains("path") || !v["path"].is_string()) c.fail("spheres.path must be a string");
     sp.path = c.resolve(v["path"].get<std::string>());
+    parse_molecule_keys(c, v, &sp);
     if (v.contains("radius_scale")) {
       sp.radius_scale = num(c, v["radius_scale"], "spheres.radius_scale");
       if (!(sp.radius_scale > 0) || !std::isfinite(sp.radius_scale)) c.fail("spheres.radius_scale must be positive");
     }
     if (v.contains("color")) {
       if (!v["color"].is_string() || !parse_sphere_color_mode(v["color"].get<std::string>(), &sp.color))
-        c.fail("spheres.color must be \"element\", \"rgba\" or \"scalar\"");
+        c.fail("spheres.color must be \"element\", \"chain\", \"residue\", \"scalar\" or \"rgba\"");
       sp.has_color_mode = true;
     }
   }

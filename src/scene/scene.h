@@ -7,6 +7,7 @@
 #include "geometry/tets/io/mesh_io.h"
 #include "scene/scene_defaults.h"
 #include "scene/surface_scene.h"
+#include "geometry/spheres/molecule_reader.h"
 #include "geometry/spheres/sphere_colors.h"
 #include "render/spheres/sphere_settings.h"
 #include "render/volume/render_settings.h"
@@ -23,6 +24,7 @@ enum class SceneKind { Volume, Spheres, Surfaces };
 struct SphereScene {
   std::string path;  // resolved against the scene's directory
   double radius_scale = 1.0;
+  MoleculeOptions molecule;  // spheres.model, .waters, .hydrogens (molecule files only)
   bool has_color_mode = false;  // false: default_color_mode of the set
   SphereColorMode color = SphereColorMode::Element;
   Shading shading;

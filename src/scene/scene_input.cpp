@@ -33,11 +33,13 @@ Scene default_scene() {
 namespace {
 
 // The scene's mesh, sphere set or surfaces, from `data` or their files.
-void load_scene_data(SceneInput& in, const SceneData* data) {
+void load_scene_data(SceneInput& in, const SceneData* data, const MoleculeOverrides& molecule) {
   const auto t0 = std::chrono::steady_clock::now();
   if (in.scene.kind == SceneKind::Spheres) {
     const std::string& path = in.scene.spheres.path;
-    in.spheres = data && data->spheres.count(path) ? data->spheres.at(path) : read_sphere_file(path);
+    molecule.apply(in.scene.spheres.molecule);
+    in.spheres = data && data->spheres.count(path) ? data->spheres.at(path)
+                                                   : read_sphere_file(path, in.scene.spheres.molecule);
     if (in.scene.spheres.radius_scale != 1.0)
       for (double& r : in.spheres.radii) r *= in.scene.spheres.radius_scale;
     in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -60,7 +62,8 @@ void load_scene_data(SceneInput& in, const SceneData* data) {
 
 }  // namespace
 
-SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options) {
+SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options,
+                            const MoleculeOverrides& molecule) {
   SceneInput in;
   if (input.empty()) {
     in.scene = default_scene();
@@ -77,15 +80,15 @@ SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_op
     in.scene.mesh_path = input;
     in.scene.mesh_options = mesh_options;
   }
-  load_scene_data(in, nullptr);
+  load_scene_data(in, nullptr, molecule);
   return in;
 }
 
 SceneInput load_scene_input_text(const std::string& json_text, const std::string& name, const std::string& base_dir,
-                                 const SceneData& data) {
+                                 const SceneData& data, const MoleculeOverrides& molecule) {
   SceneInput in;
   in.scene = parse_scene(json_text, name, base_dir);
-  load_scene_data(in, &data);
+  load_scene_data(in, &data, molecule);
   return in;
 }
 

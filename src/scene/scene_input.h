@@ -39,16 +39,30 @@ struct SceneData {
   bool empty() const { return meshes.empty() && spheres.empty() && surfaces.empty(); }
 };
 
+// What the command line (or the Python module's keywords) chose to read of a
+// molecule file: --model, --no-waters, --no-hydrogens. They override the
+// scene's spheres.model/.waters/.hydrogens; SceneArgs refuses them for other inputs.
+struct MoleculeOverrides {
+  std::string model;  // "" = the scene's (default: the first model)
+  bool no_waters = false, no_hydrogens = false;
+  void apply(MoleculeOptions& m) const {
+    if (!model.empty()) m.model = model;
+    if (no_waters) m.waters = false;
+    if (no_hydrogens) m.hydrogens = false;
+  }
+};
+
 // Reads the scene (if any) and its mesh, sphere set or surfaces (a bare
-// .pdb/.sph/.sphb file is a sphere scene with defaults; a bare .obj/.ply/.stl
+// molecule, .sph or .sphb file is a sphere scene with defaults; a bare .obj/.ply/.stl
 // or OFF surface a surface scene over a ground plane with one light). Throws std::runtime_error naming the
 // file. Camera and transfer function are filled in by finish_scene, after the
 // caller has applied its overrides (the automatic camera depends on the size).
-SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options);
+SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_options,
+                            const MoleculeOverrides& molecule = {});
 // A scene given as JSON text (`name` in messages, relative paths from
 // `base_dir`) whose files may be `data` instead.
 SceneInput load_scene_input_text(const std::string& json_text, const std::string& name, const std::string& base_dir,
-                                 const SceneData& data);
+                                 const SceneData& data, const MoleculeOverrides& molecule = {});
 void finish_scene(SceneInput& in, Projection auto_projection = Projection::Orthographic);
 
 }  // namespace zs

@@ -10,6 +10,8 @@ const char* to_string(SphereColorMode m) {
     case SphereColorMode::Element: return "element";
     case SphereColorMode::Rgba: return "rgba";
     case SphereColorMode::Scalar: return "scalar";
+    case SphereColorMode::Chain: return "chain";
+    case SphereColorMode::Residue: return "residue";
   }
   return "?";
 }
@@ -18,6 +20,8 @@ bool parse_sphere_color_mode(const std::string& s, SphereColorMode* out) {
   if (s == "element") *out = SphereColorMode::Element;
   else if (s == "rgba") *out = SphereColorMode::Rgba;
   else if (s == "scalar") *out = SphereColorMode::Scalar;
+  else if (s == "chain") *out = SphereColorMode::Chain;
+  else if (s == "residue") *out = SphereColorMode::Residue;
   else return false;
   return true;
 }
@@ -48,6 +52,40 @@ glm::vec4 element_color(unsigned z) {
   return {0.75f, 0.75f, 0.75f, 1.f};
 }
 
+namespace {
+
+glm::vec4 rgb255(unsigned char r, unsigned char g, unsigned char b) { return {r / 255.f, g / 255.f, b / 255.f, 1.f}; }
+
+}  // namespace
+
+glm::vec4 chain_color(unsigned chain_index) {
+  // Paul Tol's "bright" (less its grey), then "vibrant" orange and teal, then
+  // "muted" olive, wine, indigo and sand: twelve colours apart from one another
+  // and from a white or black background.
+  static constexpr unsigned char kPalette[kChainColors][3] = {
+      {68, 119, 170}, {238, 102, 119}, {34, 136, 51}, {204, 187, 68}, {102, 204, 238}, {170, 51, 119},
+      {238, 119, 51}, {0, 153, 136},   {153, 153, 51}, {136, 34, 85}, {51, 34, 136},   {221, 204, 119},
+  };
+  const unsigned char* c = kPalette[chain_index % kChainColors];
+  return rgb255(c[0], c[1], c[2]);
+}
+
+glm::vec4 residue_color(ResidueClass c) {
+  // Acidic red, basic blue, polar green as VMD's "ResType"; hydrophobic sand
+  // (not white: backgrounds are often white).
+  switch (c) {
+    case ResidueClass::Hydrophobic: return rgb255(240, 200, 120);
+    case ResidueClass::Polar: return rgb255(80, 190, 80);
+    case ResidueClass::Acidic: return rgb255(220, 50, 50);
+    case ResidueClass::Basic: return rgb255(50, 90, 220);
+    case ResidueClass::OtherAminoAcid: return rgb255(190, 140, 220);
+    case ResidueClass::Nucleic: return rgb255(240, 140, 40);
+    case ResidueClass::Water: return rgb255(120, 210, 240);
+    case ResidueClass::Other: break;
+  }
+  return rgb255(150, 150, 150);
+}
+
 std::vector<glm::vec4> sphere_colors(const SphereSet& s, SphereColorMode mode, const TransferFunction& tf) {
   std::vector<glm::vec4> out(s.size());
   switch (mode) {
@@ -68,6 +106,16 @@ std::vector<glm::vec4> sphere_colors(const SphereSet& s, SphereColorMode mode, c
         const auto c = tf.color(v);
         out[i] = {float(c[0]), float(c[1]), float(c[2]), float(tf.opacity(v))};
       }
+      return out;
+    case SphereColorMode::Chain:
+      if (s.chain.size() != s.size())
+        throw std::runtime_error("spheres.color is \"chain\" but the sphere set is not a molecule (no chains)");
+      for (size_t i = 0; i < s.size(); ++i) out[i] = chain_color(s.chain[i]);
+      return out;
+    case SphereColorMode::Residue:
+      if (s.residue_class.size() != s.size())
+        throw std::runtime_error("spheres.color is \"residue\" but the sphere set is not a molecule (no residues)");
+      for (size_t i = 0; i < s.size(); ++i) out[i] = residue_color(s.residue_class[i]);
       return out;
   }
   return out;

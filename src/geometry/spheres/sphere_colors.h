@@ -1,6 +1,7 @@
 // The colour and opacity each sphere is drawn with (the scene's
-// `spheres.color`): by chemical element (PDB atoms), by the file's own RGBA,
-// or by scalar through the scene's transfer function (colour and opacity).
+// `spheres.color`): by chemical element (atoms), by the file's own RGBA, by
+// scalar through the scene's transfer function (colour and opacity; a
+// molecule's B-factor), or, for molecules, by chain or by residue type.
 #pragma once
 
 #include <string>
@@ -13,7 +14,7 @@
 
 namespace zs {
 
-enum class SphereColorMode { Element, Rgba, Scalar };
+enum class SphereColorMode { Element, Rgba, Scalar, Chain, Residue };
 const char* to_string(SphereColorMode m);
 bool parse_sphere_color_mode(const std::string& s, SphereColorMode* out);
 
@@ -26,8 +27,15 @@ SphereColorMode default_color_mode(const SphereSet& s);
 // unknown: grey), opacity 1.
 glm::vec4 element_color(unsigned atomic_number);
 
+// A chain's colour: kChainPalette[chain index % kChainColors] (chains in the
+// order the file first names them), opacity 1.
+inline constexpr int kChainColors = 12;
+glm::vec4 chain_color(unsigned chain_index);
+// A residue class's colour (docs/spheres.md has the table), opacity 1.
+glm::vec4 residue_color(ResidueClass c);
+
 // One RGBA per sphere (a non-finite scalar: grey, opaque). Throws std::runtime_error when the set lacks what the
-// mode needs (no RGBA, no elements, no scalar).
+// mode needs (no RGBA, no scalar; chain and residue: not a molecule).
 std::vector<glm::vec4> sphere_colors(const SphereSet& s, SphereColorMode mode, const TransferFunction& tf);
 
 }  // namespace zs

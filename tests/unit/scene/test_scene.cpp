@@ -284,5 +284,44 @@ TEST(Scene, SphereSceneErrors) {
             std::string::npos);
 }
 
+// What is read of a molecule file: spheres.model (number or string),
+// .waters, .hydrogens; colours by chain and residue.
+TEST(Scene, MoleculeKeys) {
+  const Scene s = parse_scene(
+      R"({"spheres": {"path": "1abc.cif.gz", "model": 2, "waters": false, "hydrogens": false, "color": "chain"}})",
+      "s.json", "/d");
+  EXPECT_EQ(s.spheres.molecule.model, "2");
+  EXPECT_FALSE(s.spheres.molecule.waters);
+  EXPECT_FALSE(s.spheres.molecule.hydrogens);
+  EXPECT_EQ(s.spheres.color, SphereColorMode::Chain);
+  const Scene t = parse_scene(R"({"spheres": {"path": "a.pdb", "model": "3", "color": "residue"}})", "s.json", "/d");
+  EXPECT_EQ(t.spheres.molecule.model, "3");
+  EXPECT_TRUE(t.spheres.molecule.waters);
+  EXPECT_EQ(t.spheres.color, SphereColorMode::Residue);
+  EXPECT_EQ(parse_scene(R"({"spheres": "a.pdb"})", "s.json", "/d").spheres.molecule.model, "");
+  auto err = [](const std::string& json) {
+    try {
+      parse_scene(json, "s.json", "");
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(err(R"({"spheres": {"path": "a.sph", "model": 2}})").find("spheres.model applies to molecule files"),
+            std::string::npos);
+  EXPECT_NE(err(R"({"spheres": {"path": "a.sphb", "waters": false}})").find("spheres.waters applies to molecule files"),
+            std::string::npos);
+  EXPECT_NE(err(R"({"spheres": {"path": "a.pdb", "model": -1}})").find("spheres.model must be a model number"),
+            std::string::npos);
+  EXPECT_NE(err(R"({"spheres": {"path": "a.pdb", "model": 1.5}})").find("spheres.model must be"), std::string::npos);
+  EXPECT_NE(err(R"({"spheres": {"path": "a.pdb", "waters": "no"}})").find("spheres.waters must be true or false"),
+            std::string::npos);
+  EXPECT_NE(err(R"({"spheres": {"path": "a.pdb", "color": "bfactor"}})")
+                .find(R"(spheres.color must be "element", "chain", "residue", "scalar" or "rgba")"),
+            std::string::npos);
+  EXPECT_NE(err(R"({"spheres": {"path": "a.pdb", "chains": "A"}})").find("unknown key 'spheres.chains'"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace zs
