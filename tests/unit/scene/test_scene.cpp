@@ -8,6 +8,7 @@
 #include "output/image_io.h"
 #include "geometry/tets/io/off_io.h"
 #include "scene/scene.h"
+#include "scene/scene_input.h"
 #include "base/optics/transfer_function.h"
 #include "support/test_paths.h"
 
@@ -282,6 +283,38 @@ TEST(Scene, SphereSceneErrors) {
             std::string::npos);
   EXPECT_NE(err(R"({"mesh": "m.off", "render": {"mode": "opaque"}})").find("unknown key 'render.mode'"),
             std::string::npos);
+}
+
+// A bare molecule file of each name (.ent is PDB, .mmcif is mmCIF) is a sphere
+// scene; the command line's choices reach the reader.
+TEST(Scene, BareMoleculeFilesByName) {
+  const auto dir = test::scratch_dir();
+  const std::string pdb =
+      "ATOM      1  CA  ALA A   1       1.000   2.000   3.000  1.00 10.00           C\n"
+      "HETATM    2  O   HOH A 101       4.000   2.000   3.000  1.00 20.00           O\n"
+      "END\n";
+  const std::string cif =
+      "data_x\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n_atom_site.label_atom_id\n"
+      "_atom_site.label_comp_id\n_atom_site.label_asym_id\n_atom_site.label_seq_id\n_atom_site.Cartn_x\n"
+      "_atom_site.Cartn_y\n_atom_site.Cartn_z\n_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n"
+      "_atom_site.auth_asym_id\n_atom_site.pdbx_PDB_model_num\n_atom_site.label_alt_id\n_atom_site.auth_seq_id\n"
+      "ATOM 1 C CA ALA A 1 1.0 2.0 3.0 1.0 10.0 A 1 . 1\n"
+      "HETATM 2 O O HOH B . 4.0 2.0 3.0 1.0 20.0 A 1 . 101\n";
+  for (const auto& [name, text] : {std::pair{"x.ent", pdb}, std::pair{"x.mmcif", cif}}) {
+    const std::string path = (dir / name).string();
+    std::ofstream(path) << text;
+    SceneInput in = load_scene_input(path, {});
+    EXPECT_EQ(in.scene.kind, SceneKind::Spheres) << name;
+    ASSERT_EQ(in.spheres.size(), 2u) << name;
+    EXPECT_EQ(in.spheres.radii[0], 1.70) << name;  // Bondi's C
+    EXPECT_EQ(in.spheres.molecule.waters, 1u) << name;
+    MoleculeOverrides dry;
+    dry.no_waters = true;
+    in = load_scene_input(path, {}, dry);
+    EXPECT_EQ(in.spheres.size(), 1u) << name;
+    EXPECT_EQ(in.spheres.molecule.waters_left_out, 1u) << name;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 // What is read of a molecule file: spheres.model (number or string),
