@@ -259,15 +259,18 @@ TEST(Scene, SphereSceneParsesEveryKey) {
   EXPECT_FALSE(r.culling);
 }
 
+// The error a sphere scene's JSON gives ("no error" when it parses).
+std::string sphere_scene_error(const std::string& json) {
+  try {
+    parse_scene(json, "s.json", "");
+  } catch (const std::runtime_error& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
+
 TEST(Scene, SphereSceneErrors) {
-  auto err = [](const std::string& json) {
-    try {
-      parse_scene(json, "s.json", "");
-    } catch (const std::runtime_error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto err = &sphere_scene_error;
   EXPECT_NE(err(R"({"mesh": "m.off", "spheres": "a.sph"})").find("one of 'mesh', 'spheres' or 'surfaces'"), std::string::npos);
   EXPECT_NE(err(R"({"image": {}})").find("missing 'mesh' (volume), 'spheres' or 'surfaces'"), std::string::npos);
   EXPECT_NE(err(R"({"spheres": {"path": "a.sph", "radius_scale": 0}})").find("radius_scale"), std::string::npos);
@@ -332,14 +335,7 @@ TEST(Scene, MoleculeKeys) {
   EXPECT_TRUE(t.spheres.molecule.waters);
   EXPECT_EQ(t.spheres.color, SphereColorMode::Residue);
   EXPECT_EQ(parse_scene(R"({"spheres": "a.pdb"})", "s.json", "/d").spheres.molecule.model, "");
-  auto err = [](const std::string& json) {
-    try {
-      parse_scene(json, "s.json", "");
-    } catch (const std::runtime_error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto err = &sphere_scene_error;
   EXPECT_NE(err(R"({"spheres": {"path": "a.sph", "model": 2}})").find("spheres.model applies to molecule files"),
             std::string::npos);
   EXPECT_NE(err(R"({"spheres": {"path": "a.sphb", "waters": false}})").find("spheres.waters applies to molecule files"),
