@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -50,6 +51,12 @@ std::string format_extension(const std::string& path) {
   }
   std::string m = msg;
   if (m.starts_with(name + ":")) m = m.substr(name.size() + 1);  // PEGTL: "name:line:col: ..."
+  size_t p = 0;  // "line:col: what" as "name:line:col: what"
+  while (p < m.size() && std::isdigit(static_cast<unsigned char>(m[p]))) ++p;
+  if (p && m[p] == ':') {
+    const size_t nl = m.find('\n');
+    throw FileError(name + ":" + (nl == std::string::npos ? m : m.substr(0, nl)));
+  }
   while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
   const size_t nl = m.find('\n');
   throw FileError(name, nl == std::string::npos ? m : m.substr(0, nl));
@@ -90,7 +97,9 @@ std::string count_note(size_t n, const char* one, const char* many) {
 }
 
 const gemmi::Model& choose_model(const gemmi::Structure& st, const MoleculeOptions& opt, const std::string& name) {
-  if (st.models.empty()) throw FileError(name, "no model");
+  if (st.models.empty())  // mmCIF: gemmi reads _atom_site only with all these columns
+    throw FileError(name, "no atoms (an _atom_site loop with id, type_symbol, label_alt_id, label_asym_id, "
+                          "auth_seq_id, Cartn_x, Cartn_y, Cartn_z, occupancy and B_iso_or_equiv)");
   if (opt.model.empty()) return st.models.front();
   for (const gemmi::Model& m : st.models)
     if (m.name == opt.model) return m;
@@ -117,6 +126,9 @@ SphereSet spheres_of(const gemmi::Structure& st, const MoleculeOptions& opt, con
       const ResidueClass rc = residue_class(res);
       bool residue_used = false;
       for (const gemmi::Atom& a : res.atoms) {
+        if (!std::isfinite(a.pos.x) || !std::isfinite(a.pos.y) || !std::isfinite(a.pos.z))  // mmCIF: "abc" reads as NaN
+          throw FileError(name, "atom " + std::to_string(a.serial) + " (" + a.name + " of " + res.name + " " +
+                                    res.seqid.str() + ", chain " + ch.name + "): coordinate not a finite number");
         if (a.altloc) {  // the first alternate location the file names, as before gemmi
           if (!first_alt) first_alt = a.altloc;
           if (a.altloc != first_alt) {
@@ -182,13 +194,17 @@ SphereSet parse_molecule(std::string_view text, const std::string& name, Molecul
     if (!pdb.atoms) throw FileError(name, "no ATOM or HETATM records in model 1");
     try {
       st = gemmi::read_pdb_string(pdb.text, name);
-    } catch (const std::runtime_error& e) {
+    } catch (const std::exception& e) {
       rethrow_gemmi(name, e.what());
     }
   } else {
-    try {
-      st = gemmi::make_structure(gemmi::cif::read_memory(text.data(), text.size(), name.c_str()));
-    } catch (const std::runtime_error& e) {
+    try {  // std::exception: gemmi's checks throw runtime_error, its container accesses out_of_range
+      const gemmi::cif::Document doc = gemmi::cif::read_memory(text.data(), text.size(), name.c_str());
+      if (doc.blocks.empty()) throw FileError(name, "no data block (data_...)");
+      st = gemmi::make_structure(doc);
+    } catch (const FileError&) {
+      throw;
+    } catch (const std::exception& e) {
       rethrow_gemmi(name, e.what());
     }
   }
@@ -245,7 +261,7 @@ SphereSet read_molecule(const std::string& path, const MoleculeOptions& opt) {
     gemmi::CharArray mem;
     try {
       mem = gemmi::MaybeGzipped(path).uncompress_into_buffer();
-    } catch (const std::runtime_error& err) {
+    } catch (const std::exception& err) {
       rethrow_gemmi(path, err.what());
     }
     return parse_molecule(std::string_view(mem.data(), mem.size()), path, format, opt);
