@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -51,6 +52,8 @@ std::string format_extension(const std::string& path) {
   }
   std::string m = msg;
   if (m.starts_with(name + ":")) m = m.substr(name.size() + 1);  // PEGTL: "name:line:col: ..."
+  for (const char* before : {" of ", ": "})  // gzip: "... size of NAME", "fseek() failed (empty file?): NAME: ..."
+    for (size_t at; (at = m.find(before + name)) != std::string::npos;) m.erase(at, std::strlen(before) + name.size());
   size_t p = 0;  // "line:col: what" as "name:line:col: what"
   while (p < m.size() && std::isdigit(static_cast<unsigned char>(m[p]))) ++p;
   if (p && m[p] == ':') {
