@@ -29,6 +29,12 @@ namespace zs {
 
 namespace {
 
+// (C++17 here: see src/geometry/CMakeLists.txt.)
+bool starts_with(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s;
@@ -37,7 +43,7 @@ std::string lower(std::string s) {
 // The extension that says the format, below a ".gz".
 std::string format_extension(const std::string& path) {
   std::string p = lower(path);
-  if (p.size() > 3 && p.ends_with(".gz")) p.resize(p.size() - 3);
+  if (p.size() > 3 && ends_with(p, ".gz")) p.resize(p.size() - 3);
   return std::filesystem::path(p).extension().string();
 }
 
@@ -45,13 +51,13 @@ std::string format_extension(const std::string& path) {
 // messages whole.
 [[noreturn]] void rethrow_gemmi(const std::string& name, const std::string& msg) {
   const std::string head = "Problem in line ";
-  if (msg.starts_with(head)) {
+  if (starts_with(msg, head)) {
     size_t end = head.size(), line = 0;
     while (end < msg.size() && std::isdigit(static_cast<unsigned char>(msg[end]))) line = line * 10 + (msg[end++] - '0');
     if (line && msg.compare(end, 2, ": ") == 0) throw FileError(name, line, msg.substr(end + 2));
   }
   std::string m = msg;
-  if (m.starts_with(name + ":")) m = m.substr(name.size() + 1);  // PEGTL: "name:line:col: ..."
+  if (starts_with(m, name + ":")) m = m.substr(name.size() + 1);  // PEGTL: "name:line:col: ..."
   for (const char* before : {" of ", ": "})  // gzip: "... size of NAME", "fseek() failed (empty file?): NAME: ..."
     for (size_t at; (at = m.find(before + name)) != std::string::npos;) m.erase(at, std::strlen(before) + name.size());
   size_t p = 0;  // "line:col: what" as "name:line:col: what"
@@ -258,7 +264,7 @@ SphereSet parse_molecule(std::string_view text, const std::string& name, Molecul
 SphereSet read_molecule(const std::string& path, const MoleculeOptions& opt) {
   const std::string e = format_extension(path);
   const MoleculeFormat format = (e == ".cif" || e == ".mmcif") ? MoleculeFormat::Mmcif : MoleculeFormat::Pdb;
-  if (lower(path).ends_with(".gz")) {
+  if (ends_with(lower(path), ".gz")) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) throw FileError(path, "no such file");
     gemmi::CharArray mem;
