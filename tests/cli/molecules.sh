@@ -10,11 +10,7 @@ set -u
 zsweep=$1
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0
-same() {  # a b what: pixel- and depth-identical
-  "$zsweep" compare "$1" "$2" --json >"$tmp/cmp" 2>&1
-  grep -q '"max_abs": 0.0,' "$tmp/cmp" && grep -q '"coverage_mismatches": 0,' "$tmp/cmp" \
-    && grep -q '"max_rel": 0.0' "$tmp/cmp" || { echo "FAIL $3: $(tr -d '\n' <"$tmp/cmp")"; fail=1; }
-}
+source "$(dirname "$0")/lib/same_image.sh"  # same A B WHAT: pixel- and depth-identical
 atom() {  # record name residue chain seq x y z b element
   printf '%-6s%5d %-4s %3s %s%4d    %8.3f%8.3f%8.3f%6.2f%6.2f          %2s\n' "$1" $((++serial)) "$2" "$3" "$4" "$5" \
     "$6" "$7" "$8" 1.0 "$9" "${10}"

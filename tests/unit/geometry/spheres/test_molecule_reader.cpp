@@ -18,6 +18,7 @@
 
 #include "base/util/file_error.h"
 #include "geometry/spheres/molecule_reader.h"
+#include "support/file_error_of.h"
 #include "support/test_paths.h"
 
 namespace zs {
@@ -25,16 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The message of the FileError that f throws ("" if none).
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const FileError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 // One ATOM/HETATM record in the PDB's fixed columns (80 wide with the element).
 struct Rec {
