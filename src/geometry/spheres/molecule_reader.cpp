@@ -71,6 +71,14 @@ std::string format_extension(const std::string& path) {
   throw FileError(name, nl == std::string::npos ? m : m.substr(0, nl));
 }
 
+// gemmi's residue look-ups (is_water, find_tabulated_residue) shift the
+// name's chars as int: a byte above 127 is a negative char, undefined
+// behaviour (found by scripts/fuzz, pdb). No residue gemmi knows has one.
+bool plain_name(const std::string& s) {
+  return std::all_of(s.begin(), s.end(), [](char c) { return static_cast<unsigned char>(c) < 128; });
+}
+bool is_water(const gemmi::Residue& r) { return plain_name(r.name) && r.is_water(); }
+
 // Residue classes of the twenty standard amino acids by side chain
 // (docs/spheres.md, "Colours"); other residues by gemmi's residue table.
 ResidueClass residue_class(const gemmi::Residue& r) {
@@ -82,6 +90,7 @@ ResidueClass residue_class(const gemmi::Residue& r) {
       {"GLN", ResidueClass::Polar},       {"CYS", ResidueClass::Polar},       {"TYR", ResidueClass::Polar},
       {"ASP", ResidueClass::Acidic},      {"GLU", ResidueClass::Acidic},      {"LYS", ResidueClass::Basic},
       {"ARG", ResidueClass::Basic},       {"HIS", ResidueClass::Basic}};
+  if (!plain_name(r.name)) return ResidueClass::Other;
   if (auto it = kAmino.find(r.name); it != kAmino.end()) return it->second;
   if (r.is_water()) return ResidueClass::Water;
   const gemmi::ResidueInfo info = gemmi::find_tabulated_residue(r.name);
@@ -145,7 +154,7 @@ SphereSet spheres_of(const gemmi::Structure& st, const MoleculeOptions& opt, con
             continue;
           }
         }
-        if (res.is_water() && !opt.waters) {
+        if (is_water(res) && !opt.waters) {
           ++c.waters_left_out;
           continue;
         }
@@ -170,7 +179,7 @@ SphereSet spheres_of(const gemmi::Structure& st, const MoleculeOptions& opt, con
         s.chain.push_back(chain_id);
         s.residue_class.push_back(rc);
         ++by_element[symbol.empty() ? "?" : symbol];
-        if (res.is_water()) ++c.waters;
+        if (is_water(res)) ++c.waters;
         if (a.is_hydrogen()) ++c.hydrogens;
       }
       if (residue_used) ++c.residues;

@@ -423,6 +423,17 @@ TEST(MoleculeReader, MalformedPdbIsOneLineNamingFileAndLine) {
             "g.pdb: no ATOM or HETATM records in model 1");
 }
 
+// Bytes above 127 in a residue name (scripts/fuzz found gemmi's residue
+// look-ups shifting them as negative chars): read, of no known class.
+TEST(MoleculeReader, NonAsciiResidueNameIsOther) {
+  const SphereSet s = parse_pdb(records({{"ATOM", " CA ", "\xbe\xdf\xbe", 'A', 1, 1, 1, 1, 5, "C"},
+                                         {"HETATM", " O  ", "HOH", 'A', 2, 2, 2, 2, 5, "O"}}),
+                                "n.pdb");
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s.residue_class, (std::vector<ResidueClass>{ResidueClass::Other, ResidueClass::Water}));
+  EXPECT_EQ(s.molecule.waters, 1u);
+}
+
 TEST(MoleculeReader, TruncatedOrBrokenGzipIsOneLineNamingTheFile) {
   if (!have_command("gzip")) GTEST_SKIP() << "no gzip";
   const fs::path dir = test::scratch_dir();
