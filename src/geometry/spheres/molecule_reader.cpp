@@ -71,6 +71,34 @@ std::string format_extension(const std::string& path) {
   throw FileError(name, nl == std::string::npos ? m : m.substr(0, nl));
 }
 
+// gemmi reads residue numbers, ids and charges with string_to_int, which
+// overflows int (undefined) on 10+ digits (found by scripts/fuzz, cif). Such
+// a value in a tag gemmi may read as an integer is an error here first.
+void check_integers(const gemmi::cif::Block& block, const std::string& name) {
+  const auto integer_tag = [](std::string t) {
+    t = lower(t);
+    return ends_with(t, "seq_id") || ends_with(t, "num") || ends_with(t, "charge") || ends_with(t, ".id");
+  };
+  const auto check = [&](const std::string& tag, const std::string& v, int at) {
+    size_t i = (!v.empty() && (v[0] == '-' || v[0] == '+')) ? 1 : 0;
+    while (i + 1 < v.size() && v[i] == '0') ++i;
+    const size_t digits = v.size() - i;
+    if (digits < 10 || !std::all_of(v.begin() + i, v.end(), [](char c) { return c >= '0' && c <= '9'; })) return;
+    if (!integer_tag(tag)) return;
+    const std::string what = tag + " " + v.substr(0, 24) + (v.size() > 24 ? "..." : "") + ": integer out of range";
+    if (at > 0) throw FileError(name, size_t(at), what);
+    throw FileError(name, what);
+  };
+  for (const gemmi::cif::Item& item : block.items) {
+    if (item.type == gemmi::cif::ItemType::Pair) {
+      check(item.pair[0], item.pair[1], item.line_number);
+    } else if (item.type == gemmi::cif::ItemType::Loop && !item.loop.tags.empty()) {
+      const size_t w = item.loop.tags.size();
+      for (size_t k = 0; k < item.loop.values.size(); ++k) check(item.loop.tags[k % w], item.loop.values[k], -1);
+    }
+  }
+}
+
 // gemmi's residue look-ups (is_water, find_tabulated_residue) shift the
 // name's chars as int: a byte above 127 is a negative char, undefined
 // behaviour (found by scripts/fuzz, pdb). No residue gemmi knows has one.
@@ -219,6 +247,7 @@ SphereSet parse_molecule(std::string_view text, const std::string& name, Molecul
     try {  // std::exception: gemmi's checks throw runtime_error, its container accesses out_of_range
       const gemmi::cif::Document doc = gemmi::cif::read_memory(text.data(), text.size(), name.c_str());
       if (doc.blocks.empty()) throw FileError(name, "no data block (data_...)");
+      check_integers(doc.blocks[0], name);
       st = gemmi::make_structure(doc);
     } catch (const FileError&) {
       throw;

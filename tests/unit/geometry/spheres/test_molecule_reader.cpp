@@ -390,6 +390,14 @@ TEST(MoleculeReader, MalformedMmcifIsOneLineNamingTheFile) {
   EXPECT_EQ(cif_error(head + "ATOM 1 N N GLY A 1 abc 2.0 3.0 1.0 5.0 1 . 1\n"),
             "b.cif: atom 1 (N of GLY 1, chain A): coordinate not a finite number");
 
+  // An integer gemmi would overflow (scripts/fuzz, cif): an error first.
+  const std::string big = head + "ATOM 1 N N GLY A 1 1.0 2.0 3.0 1.0 5.0 1 . 2555555555\n";
+  EXPECT_EQ(cif_error(big), "b.cif: _atom_site.auth_seq_id 2555555555: integer out of range");
+  EXPECT_EQ(cif_error("data_x\n_atom_site.pdbx_formal_charge -99999999999\n"),
+            "b.cif:2: _atom_site.pdbx_formal_charge -99999999999: integer out of range");
+  EXPECT_EQ(parse_molecule(head + "ATOM 0000000000001 N N GLY A 1 1.0 2.0 3.0 1.0 5.0 1 . -999\n", "g.cif",
+                           MoleculeFormat::Mmcif).size(), 1u);  // leading zeros, negative residue numbers: fine
+
   // Well-formed CIF without atoms, or whose _atom_site lacks a column gemmi
   // needs (here label_alt_id and auth_seq_id).
   const std::string no_atoms = "b.cif: no atoms (an _atom_site loop with id, type_symbol, label_alt_id, "
