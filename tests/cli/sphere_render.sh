@@ -7,11 +7,7 @@ set -u
 zsweep=$1; src=$2
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0
-same() {  # a b what: pixel- and depth-identical
-  "$zsweep" compare "$1" "$2" --json >"$tmp/cmp" 2>&1
-  grep -q '"max_abs": 0.0,' "$tmp/cmp" && grep -q '"coverage_mismatches": 0,' "$tmp/cmp" \
-    && grep -q '"max_rel": 0.0' "$tmp/cmp" || { echo "FAIL $3: $(tr -d '\n' <"$tmp/cmp")"; fail=1; }
-}
+source "$(dirname "$0")/lib/same_image.sh"  # same A B WHAT: pixel- and depth-identical
 close() {  # a b what: within 1e-5 in colour, depth within 1e-6 relative, at most 3 grazing pixels
   "$zsweep" compare "$1" "$2" --json >"$tmp/cmp" 2>&1
   python3 - "$tmp/cmp" "$3" <<'PY' || fail=1

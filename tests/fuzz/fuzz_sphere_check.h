@@ -33,6 +33,16 @@ inline void check_spheres(const SphereSet& s) {
         if (!(s.rgba[i][k] >= 0.f && s.rgba[i][k] <= 1.f)) std::abort();
   }
   if (s.degenerate > s.size()) std::abort();
+  if (s.is_molecule()) {  // the molecule reader's per-atom fields and counts
+    if (s.chain.size() != s.size() || s.residue_class.size() != s.size() || s.molecule.atoms != s.size()) std::abort();
+    for (uint16_t c : s.chain)
+      if (c >= s.chain_names.size()) std::abort();
+    for (ResidueClass rc : s.residue_class)
+      if (static_cast<int>(rc) >= kResidueClasses) std::abort();
+    size_t counted = 0;
+    for (const auto& e : s.molecule.elements) counted += e.second;
+    if (counted != s.size() || s.molecule.chains != s.chain_names.size()) std::abort();
+  }
 }
 
 // Sets larger than this are checked but not rendered (milliseconds per input).

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -27,6 +29,12 @@ namespace zs {
 
 namespace {
 
+// (C++17 here: see src/geometry/CMakeLists.txt.)
+bool starts_with(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s;
@@ -35,7 +43,7 @@ std::string lower(std::string s) {
 // The extension that says the format, below a ".gz".
 std::string format_extension(const std::string& path) {
   std::string p = lower(path);
-  if (p.size() > 3 && p.ends_with(".gz")) p.resize(p.size() - 3);
+  if (p.size() > 3 && ends_with(p, ".gz")) p.resize(p.size() - 3);
   return std::filesystem::path(p).extension().string();
 }
 
@@ -43,17 +51,61 @@ std::string format_extension(const std::string& path) {
 // messages whole.
 [[noreturn]] void rethrow_gemmi(const std::string& name, const std::string& msg) {
   const std::string head = "Problem in line ";
-  if (msg.starts_with(head)) {
+  if (starts_with(msg, head)) {
     size_t end = head.size(), line = 0;
     while (end < msg.size() && std::isdigit(static_cast<unsigned char>(msg[end]))) line = line * 10 + (msg[end++] - '0');
     if (line && msg.compare(end, 2, ": ") == 0) throw FileError(name, line, msg.substr(end + 2));
   }
   std::string m = msg;
-  if (m.starts_with(name + ":")) m = m.substr(name.size() + 1);  // PEGTL: "name:line:col: ..."
+  if (starts_with(m, name + ":")) m = m.substr(name.size() + 1);  // PEGTL: "name:line:col: ..."
+  for (const char* before : {" of ", ": "})  // gzip: "... size of NAME", "fseek() failed (empty file?): NAME: ..."
+    for (size_t at; (at = m.find(before + name)) != std::string::npos;) m.erase(at, std::strlen(before) + name.size());
+  size_t p = 0;  // "line:col: what" as "name:line:col: what"
+  while (p < m.size() && std::isdigit(static_cast<unsigned char>(m[p]))) ++p;
+  if (p && m[p] == ':') {
+    const size_t nl = m.find('\n');
+    throw FileError(name + ":" + (nl == std::string::npos ? m : m.substr(0, nl)));
+  }
   while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
   const size_t nl = m.find('\n');
   throw FileError(name, nl == std::string::npos ? m : m.substr(0, nl));
 }
+
+// gemmi reads residue numbers, ids and charges with string_to_int, which
+// overflows int (undefined) on 10+ digits (found by scripts/fuzz, cif). Such
+// a value in a tag gemmi may read as an integer is an error here first.
+void check_integers(const gemmi::cif::Block& block, const std::string& name) {
+  const auto integer_tag = [](std::string t) {
+    t = lower(t);
+    return ends_with(t, "seq_id") || ends_with(t, "num") || ends_with(t, "charge") || ends_with(t, ".id");
+  };
+  const auto check = [&](const std::string& tag, const std::string& v, int at) {
+    size_t i = (!v.empty() && (v[0] == '-' || v[0] == '+')) ? 1 : 0;
+    while (i + 1 < v.size() && v[i] == '0') ++i;
+    const size_t digits = v.size() - i;
+    if (digits < 10 || !std::all_of(v.begin() + i, v.end(), [](char c) { return c >= '0' && c <= '9'; })) return;
+    if (!integer_tag(tag)) return;
+    const std::string what = tag + " " + v.substr(0, 24) + (v.size() > 24 ? "..." : "") + ": integer out of range";
+    if (at > 0) throw FileError(name, size_t(at), what);
+    throw FileError(name, what);
+  };
+  for (const gemmi::cif::Item& item : block.items) {
+    if (item.type == gemmi::cif::ItemType::Pair) {
+      check(item.pair[0], item.pair[1], item.line_number);
+    } else if (item.type == gemmi::cif::ItemType::Loop && !item.loop.tags.empty()) {
+      const size_t w = item.loop.tags.size();
+      for (size_t k = 0; k < item.loop.values.size(); ++k) check(item.loop.tags[k % w], item.loop.values[k], -1);
+    }
+  }
+}
+
+// gemmi's residue look-ups (is_water, find_tabulated_residue) shift the
+// name's chars as int: a byte above 127 is a negative char, undefined
+// behaviour (found by scripts/fuzz, pdb). No residue gemmi knows has one.
+bool plain_name(const std::string& s) {
+  return std::all_of(s.begin(), s.end(), [](char c) { return static_cast<unsigned char>(c) < 128; });
+}
+bool is_water(const gemmi::Residue& r) { return plain_name(r.name) && r.is_water(); }
 
 // Residue classes of the twenty standard amino acids by side chain
 // (docs/spheres.md, "Colours"); other residues by gemmi's residue table.
@@ -66,6 +118,7 @@ ResidueClass residue_class(const gemmi::Residue& r) {
       {"GLN", ResidueClass::Polar},       {"CYS", ResidueClass::Polar},       {"TYR", ResidueClass::Polar},
       {"ASP", ResidueClass::Acidic},      {"GLU", ResidueClass::Acidic},      {"LYS", ResidueClass::Basic},
       {"ARG", ResidueClass::Basic},       {"HIS", ResidueClass::Basic}};
+  if (!plain_name(r.name)) return ResidueClass::Other;
   if (auto it = kAmino.find(r.name); it != kAmino.end()) return it->second;
   if (r.is_water()) return ResidueClass::Water;
   const gemmi::ResidueInfo info = gemmi::find_tabulated_residue(r.name);
@@ -90,7 +143,9 @@ std::string count_note(size_t n, const char* one, const char* many) {
 }
 
 const gemmi::Model& choose_model(const gemmi::Structure& st, const MoleculeOptions& opt, const std::string& name) {
-  if (st.models.empty()) throw FileError(name, "no model");
+  if (st.models.empty())  // mmCIF: gemmi reads _atom_site only with all these columns
+    throw FileError(name, "no atoms (an _atom_site loop with id, type_symbol, label_alt_id, label_asym_id, "
+                          "auth_seq_id, Cartn_x, Cartn_y, Cartn_z, occupancy and B_iso_or_equiv)");
   if (opt.model.empty()) return st.models.front();
   for (const gemmi::Model& m : st.models)
     if (m.name == opt.model) return m;
@@ -117,6 +172,9 @@ SphereSet spheres_of(const gemmi::Structure& st, const MoleculeOptions& opt, con
       const ResidueClass rc = residue_class(res);
       bool residue_used = false;
       for (const gemmi::Atom& a : res.atoms) {
+        if (!std::isfinite(a.pos.x) || !std::isfinite(a.pos.y) || !std::isfinite(a.pos.z))  // mmCIF: "abc" reads as NaN
+          throw FileError(name, "atom " + std::to_string(a.serial) + " (" + a.name + " of " + res.name + " " +
+                                    res.seqid.str() + ", chain " + ch.name + "): coordinate not a finite number");
         if (a.altloc) {  // the first alternate location the file names, as before gemmi
           if (!first_alt) first_alt = a.altloc;
           if (a.altloc != first_alt) {
@@ -124,7 +182,7 @@ SphereSet spheres_of(const gemmi::Structure& st, const MoleculeOptions& opt, con
             continue;
           }
         }
-        if (res.is_water() && !opt.waters) {
+        if (is_water(res) && !opt.waters) {
           ++c.waters_left_out;
           continue;
         }
@@ -149,7 +207,7 @@ SphereSet spheres_of(const gemmi::Structure& st, const MoleculeOptions& opt, con
         s.chain.push_back(chain_id);
         s.residue_class.push_back(rc);
         ++by_element[symbol.empty() ? "?" : symbol];
-        if (res.is_water()) ++c.waters;
+        if (is_water(res)) ++c.waters;
         if (a.is_hydrogen()) ++c.hydrogens;
       }
       if (residue_used) ++c.residues;
@@ -182,13 +240,18 @@ SphereSet parse_molecule(std::string_view text, const std::string& name, Molecul
     if (!pdb.atoms) throw FileError(name, "no ATOM or HETATM records in model 1");
     try {
       st = gemmi::read_pdb_string(pdb.text, name);
-    } catch (const std::runtime_error& e) {
+    } catch (const std::exception& e) {
       rethrow_gemmi(name, e.what());
     }
   } else {
-    try {
-      st = gemmi::make_structure(gemmi::cif::read_memory(text.data(), text.size(), name.c_str()));
-    } catch (const std::runtime_error& e) {
+    try {  // std::exception: gemmi's checks throw runtime_error, its container accesses out_of_range
+      const gemmi::cif::Document doc = gemmi::cif::read_memory(text.data(), text.size(), name.c_str());
+      if (doc.blocks.empty()) throw FileError(name, "no data block (data_...)");
+      check_integers(doc.blocks[0], name);
+      st = gemmi::make_structure(doc);
+    } catch (const FileError&) {
+      throw;
+    } catch (const std::exception& e) {
       rethrow_gemmi(name, e.what());
     }
   }
@@ -239,13 +302,13 @@ SphereSet parse_molecule(std::string_view text, const std::string& name, Molecul
 SphereSet read_molecule(const std::string& path, const MoleculeOptions& opt) {
   const std::string e = format_extension(path);
   const MoleculeFormat format = (e == ".cif" || e == ".mmcif") ? MoleculeFormat::Mmcif : MoleculeFormat::Pdb;
-  if (lower(path).ends_with(".gz")) {
+  if (ends_with(lower(path), ".gz")) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) throw FileError(path, "no such file");
     gemmi::CharArray mem;
     try {
       mem = gemmi::MaybeGzipped(path).uncompress_into_buffer();
-    } catch (const std::runtime_error& err) {
+    } catch (const std::exception& err) {
       rethrow_gemmi(path, err.what());
     }
     return parse_molecule(std::string_view(mem.data(), mem.size()), path, format, opt);

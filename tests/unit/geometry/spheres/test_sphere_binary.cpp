@@ -13,21 +13,14 @@
 #include "geometry/spheres/sphere_io.h"
 #include "geometry/spheres/sphere_reader.h"
 #include "geometry/spheres/sphere_writer.h"
+#include "support/file_error_of.h"
 #include "support/test_paths.h"
 #include "base/util/file_error.h"
 
 namespace zs {
 namespace {
 
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const FileError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 // A .sphb image by hand, independent of the writer.
 std::string sphb(uint32_t fields, uint64_t count, const std::vector<float>& values, uint32_t reserved = 0) {

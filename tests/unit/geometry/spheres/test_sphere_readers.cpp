@@ -12,21 +12,13 @@
 #include "geometry/spheres/sphere_colors.h"
 #include "geometry/spheres/sphere_io.h"
 #include "geometry/spheres/sphere_reader.h"
+#include "support/file_error_of.h"
 #include "support/test_paths.h"
 
 namespace zs {
 namespace {
 
-// The message of the FileError that f throws ("" if none).
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const FileError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 std::string sph_error(const std::string& text) {
   return error_of([&] { parse_spheres(text, "s.sph"); });
