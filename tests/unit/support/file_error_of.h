@@ -1,4 +1,4 @@
-// The message of the FileError a reader throws, for tests of one-line errors.
+// The message of what a call throws, for tests of one-line errors.
 #pragma once
 
 #include <string>
@@ -7,15 +7,22 @@
 
 namespace zs::test {
 
-// The message of the FileError that f throws ("" if none; other exceptions pass).
-template <class F>
-std::string error_of(F f) {
+// The message of what `f` throws as E ("" if it throws nothing; other
+// exceptions pass).
+template <class E, class F>
+std::string thrown(F f) {
   try {
     f();
-  } catch (const FileError& e) {
+  } catch (const E& e) {
     return e.what();
   }
   return "";
+}
+
+// The message of the FileError that f throws ("" if none).
+template <class F>
+std::string error_of(F f) {
+  return thrown<FileError>(f);
 }
 
 }  // namespace zs::test

@@ -16,10 +16,12 @@
 #include "geometry/tets/generate/shapes.h"
 #include "geometry/tets/generate/tetgen_mesher.h"
 #include "base/util/file_error.h"
+#include "support/file_error_of.h"
 #include "support/test_inr.h"
 #include "support/test_paths.h"
 
 namespace fs = std::filesystem;
+using zs::test::thrown;
 
 namespace {
 
@@ -34,17 +36,6 @@ std::string ball_image() {
       for (int i = 0; i < n; ++i) data.push_back(float(glm::length(glm::dvec3(i, j, k) * vx - glm::dvec3(c))));
   zs::test::write_inr(p, n, vx, data);
   return p.string();
-}
-
-// The message of what `f` throws as E ("" if it throws nothing).
-template <class E, class F>
-std::string thrown(F f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  return "";
 }
 
 bool same(const zs::TetMesh& a, const zs::TetMesh& b) {
