@@ -77,13 +77,17 @@ std::string format_extension(const std::string& path) {
 void check_integers(const gemmi::cif::Block& block, const std::string& name) {
   const auto integer_tag = [](std::string t) {
     t = lower(t);
-    return ends_with(t, "seq_id") || ends_with(t, "num") || ends_with(t, "charge") || ends_with(t, ".id");
+    return ends_with(t, "id") || ends_with(t, "num") || ends_with(t, "number") || ends_with(t, "charge") ||
+           ends_with(t, "z_pdb");
   };
   const auto check = [&](const std::string& tag, const std::string& v, int at) {
+    // string_to_int reads the leading digits and stops at anything else
+    // ("2555555555#5" overflows too), so the leading run decides.
     size_t i = (!v.empty() && (v[0] == '-' || v[0] == '+')) ? 1 : 0;
     while (i + 1 < v.size() && v[i] == '0') ++i;
-    const size_t digits = v.size() - i;
-    if (digits < 10 || !std::all_of(v.begin() + i, v.end(), [](char c) { return c >= '0' && c <= '9'; })) return;
+    size_t end = i;
+    while (end < v.size() && v[end] >= '0' && v[end] <= '9') ++end;
+    if (end - i < 10) return;
     if (!integer_tag(tag)) return;
     const std::string what = tag + " " + v.substr(0, 24) + (v.size() > 24 ? "..." : "") + ": integer out of range";
     if (at > 0) throw FileError(name, size_t(at), what);

@@ -395,6 +395,9 @@ TEST(MoleculeReader, MalformedMmcifIsOneLineNamingTheFile) {
   EXPECT_EQ(cif_error(big), "b.cif: _atom_site.auth_seq_id 2555555555: integer out of range");
   EXPECT_EQ(cif_error("data_x\n_atom_site.pdbx_formal_charge -99999999999\n"),
             "b.cif:2: _atom_site.pdbx_formal_charge -99999999999: integer out of range");
+  // gemmi reads the leading digits and stops at anything else: they decide.
+  EXPECT_EQ(cif_error(head + "ATOM 2555555555#5 N N GLY A 1 1.0 2.0 3.0 1.0 5.0 1 . 1\n"),
+            "b.cif: _atom_site.id 2555555555#5: integer out of range");
   EXPECT_EQ(parse_molecule(head + "ATOM 0000000000001 N N GLY A 1 1.0 2.0 3.0 1.0 5.0 1 . -999\n", "g.cif",
                            MoleculeFormat::Mmcif).size(), 1u);  // leading zeros, negative residue numbers: fine
 
