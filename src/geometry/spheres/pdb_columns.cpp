@@ -2,6 +2,7 @@
 // (pdb_columns.h). gemmi reads the rest; this keeps our one-line errors.
 #include "geometry/spheres/pdb_columns.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 
@@ -22,6 +23,16 @@ std::string_view trim(std::string_view s) {
   while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
   while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
   return s;
+}
+
+// SSBOND, LINK and CISPEP as gemmi knows them: the first four characters,
+// any case.
+bool connection_record(std::string_view line) {
+  if (line.size() < 4) return false;
+  char up[4];
+  for (int i = 0; i < 4; ++i) up[i] = static_cast<char>(std::toupper(static_cast<unsigned char>(line[i])));
+  const std::string_view u(up, 4);
+  return u == "SSBO" || u == "LINK" || u == "CISP";
 }
 
 bool is_alpha(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
@@ -66,7 +77,17 @@ PdbText prepare_pdb_text(std::string_view text, const std::string& name) {
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     const bool atom = line.starts_with("ATOM"), hetatm = line.starts_with("HETATM");
     if (!atom && !hetatm) {
-      out.text.append(line).push_back('\n');
+      out.text.append(line);
+      // gemmi reads the connection records by their columns without looking
+      // at the line's length (found by scripts/fuzz, pdb): padded to the
+      // format's 80 columns, what is missing reads as blank, as the format says.
+      // gemmi's lines end at a NUL byte: count only what comes before one.
+      const size_t len = std::min(line.size(), line.find('\0'));
+      if (connection_record(line) && len < 80) {
+        out.text.resize(out.text.size() - (line.size() - len));
+        out.text.append(80 - len, ' ');
+      }
+      out.text.push_back('\n');
       continue;
     }
     const char* kind = atom ? "ATOM" : "HETATM";
