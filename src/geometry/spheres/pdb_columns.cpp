@@ -75,18 +75,21 @@ PdbText prepare_pdb_text(std::string_view text, const std::string& name) {
   while (lines.next(line)) {
     const size_t line_no = lines.line_no();
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    // gemmi ends a line at a NUL byte and reads on after it as if a new line
+    // began (found by scripts/fuzz, pdb): a NUL is no text, so a blank here.
+    std::string no_nul;
+    if (line.find('\0') != std::string_view::npos) {
+      no_nul.assign(line);
+      std::replace(no_nul.begin(), no_nul.end(), '\0', ' ');
+      line = no_nul;
+    }
     const bool atom = line.starts_with("ATOM"), hetatm = line.starts_with("HETATM");
     if (!atom && !hetatm) {
       out.text.append(line);
       // gemmi reads the connection records by their columns without looking
       // at the line's length (found by scripts/fuzz, pdb): padded to the
       // format's 80 columns, what is missing reads as blank, as the format says.
-      // gemmi's lines end at a NUL byte: count only what comes before one.
-      const size_t len = std::min(line.size(), line.find('\0'));
-      if (connection_record(line) && len < 80) {
-        out.text.resize(out.text.size() - (line.size() - len));
-        out.text.append(80 - len, ' ');
-      }
+      if (connection_record(line) && line.size() < 80) out.text.append(80 - line.size(), ' ');
       out.text.push_back('\n');
       continue;
     }
