@@ -9,18 +9,9 @@
 #include "geometry/spheres/sphere_reader.h"
 #include "geometry/spheres/sphere_writer.h"
 #include "base/util/file_error.h"
+#include "base/util/file_name.h"
 
 namespace zs {
-
-namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e;
-}
-
-}  // namespace
 
 bool is_sphere_file(const std::string& path) {
   const std::string e = lower_extension(path);

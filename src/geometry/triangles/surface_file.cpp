@@ -1,4 +1,5 @@
 #include "geometry/triangles/surface_file.h"
+#include "base/util/file_name.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,12 +7,6 @@
 #include <fstream>
 
 namespace zs {
-
-std::string lower_extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return e;
-}
 
 std::string first_token(const std::string& path) {
   std::ifstream in(path);

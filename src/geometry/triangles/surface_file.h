@@ -7,14 +7,14 @@
 
 #include <string>
 
+#include "base/util/file_name.h"  // lower_extension
+
 namespace zs {
 
 // True for a file name a surface reader takes: .obj, .ply, .stl, or a .off
 // file whose first token names an OFF surface. Reads nothing otherwise.
 bool is_surface_file(const std::string& path);
 
-// The file name's extension in lower case, with its dot ("" when none).
-std::string lower_extension(const std::string& path);
 // The first token of the first line that is neither blank nor a comment.
 std::string first_token(const std::string& path);
 // Whether a first token is an OFF surface's keyword.

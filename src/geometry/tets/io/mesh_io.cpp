@@ -9,6 +9,7 @@
 #include "geometry/tets/io/vtk_io.h"
 #include "geometry/triangles/surface_file.h"
 #include "base/util/file_error.h"
+#include "base/util/file_name.h"
 #include "base/util/input_file.h"
 #include "base/util/atomic_file.h"
 
@@ -16,14 +17,8 @@ namespace zs {
 
 namespace fs = std::filesystem;
 
-static std::string lower_ext(const std::string& path) {
-  std::string e = fs::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e;
-}
-
 MeshFormat format_of(const std::string& path, const ReadOptions& opt) {
-  const std::string e = lower_ext(path);
+  const std::string e = lower_extension(path);
   if (e == ".off") return MeshFormat::Off;
   if (e == ".vtu") return MeshFormat::Vtu;
   if (e == ".vtk") return MeshFormat::VtkLegacy;
@@ -42,7 +37,7 @@ TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
   const MeshFormat format = format_of(path, opt);
   if (!opt.q_path.empty() && format != MeshFormat::Plot3d)
     throw FileError(path, "a PLOT3D solution file (" + opt.q_path + ") applies to PLOT3D grids only, and this is a " +
-                              lower_ext(path) + " mesh");
+                              lower_extension(path) + " mesh");
   if (format == MeshFormat::Off || format == MeshFormat::TetGen) {
     // One unnamed scalar column at most: a name is either it or a mistake.
     TetMesh m = format == MeshFormat::Off ? read_off(path) : read_tetgen(path);

@@ -42,6 +42,7 @@
 #include <memory>
 
 #include "geometry/tets/io/vtk_capture.h"
+#include "base/util/file_name.h"
 #include "geometry/tets/io/vtk_scalar.h"
 #include "geometry/tets/io/vtk_io.h"
 #include "base/util/file_error.h"
@@ -51,12 +52,6 @@ namespace zs {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lower_ext(const std::string& path) {
-  std::string e = fs::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e;
-}
 
 // ---------------------------------------------------------------- reading
 
@@ -76,7 +71,7 @@ vtkSmartPointer<vtkDataSet> read_dataset(const std::string& path,
     f.read(head.data(), static_cast<std::streamsize>(head.size()));
     head.resize(static_cast<size_t>(f.gcount()));
   }
-  const bool legacy = lower_ext(path) == ".vtk";
+  const bool legacy = lower_extension(path) == ".vtk";
   std::string lower = head.substr(0, 14);
   std::transform(lower.begin(), lower.end(), lower.begin(),
                  [](unsigned char c) { return std::tolower(c); });
