@@ -1,20 +1,39 @@
 #include "geometry/tets/topology.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 namespace zs {
 
 namespace {
 
-// One (tet, local face) record keyed by its sorted vertex triple.
-struct FaceRec {
-  uint32_t b, c;  // the two larger vertices (the smallest is the bucket)
-  uint32_t tet;
-  uint32_t local;  // face opposite local vertex `local`
+// One face record of a bucket being sorted: the face's two larger vertices
+// (the bucket is its smallest) and tet << 2 | local face.
+struct Keyed {
+  uint32_t b, c, rec;
+  bool operator<(const Keyed& o) const { return b != o.b ? b < o.b : (c != o.c ? c < o.c : rec < o.rec); }
 };
+
+// Counts per vertex, then a prefix sum: start[v] .. start[v + 1].
+void prefix_sum(std::vector<uint32_t>& v) {
+  uint32_t run = 0;
+  for (uint32_t& x : v) {
+    const uint32_t c = x;
+    x = run;
+    run += c;
+  }
+}
+
+constexpr size_t kGrain = 1 << 14;
 
 }  // namespace
 
@@ -22,97 +41,147 @@ Topology build_topology(const TetMesh& m) {
   Topology topo;
   const size_t nv = m.points.size();
   const size_t nt = m.tets.size();
+  if (nt >= kMaxTopologyTets)
+    throw std::runtime_error("the mesh has " + std::to_string(nt) + " tets; at most " +
+                             std::to_string(kMaxTopologyTets - 1) + " fit the face records");
+  topo.tets = std::span<const Tet>(m.tets);
+  const Tet* tets = m.tets.data();
 
-  // Bucket the 4·nt face records by their smallest vertex (counting sort),
-  // then sort each small bucket by the other two: linear-ish, and far faster
-  // than one global sort for meshes of millions of tets.
+  // Face records bucketed by their smallest vertex (a counting sort: counts,
+  // prefix, fill), each record 4 bytes (tet << 2 | k): the vertices are read
+  // back from the tet. Buckets are filled in any order and then sorted by the
+  // full key (b, c, tet, k), so the result does not depend on the threads.
   std::vector<uint32_t> start(nv + 1, 0);
-  auto sorted3 = [](uint32_t a, uint32_t b, uint32_t c) {
-    if (a > b) std::swap(a, b);
-    if (b > c) std::swap(b, c);
-    if (a > b) std::swap(a, b);
-    return std::array<uint32_t, 3>{a, b, c};
-  };
-  auto face_of = [&](const Tet& t, int k) {
-    // Face opposite local vertex k.
-    static constexpr int kOther[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-    return sorted3(t[kOther[k][0]], t[kOther[k][1]], t[kOther[k][2]]);
-  };
-  for (const Tet& t : m.tets)
-    for (int k = 0; k < 4; ++k) ++start[face_of(t, k)[0] + 1];
-  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-
-  std::vector<FaceRec> recs(4 * nt);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t < r.end(); ++t)
+      for (uint32_t k = 0; k < 4; ++k)
+        std::atomic_ref<uint32_t>(start[Topology::tet_face(tets[t], k)[0]]).fetch_add(1, std::memory_order_relaxed);
+  });
+  prefix_sum(start);  // start[nv] = 4 nt
+  std::vector<uint32_t> recs(4 * nt);
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (uint32_t ti = 0; ti < nt; ++ti)
-      for (uint32_t k = 0; k < 4; ++k) {
-        auto f = face_of(m.tets[ti], k);
-        recs[fill[f[0]]++] = {f[1], f[2], ti, k};
-      }
-  }
-
-  topo.tet_faces.assign(nt, {kNoTet, kNoTet, kNoTet, kNoTet});
-  topo.faces.reserve(2 * nt + nt / 4);
-  topo.face_tets.reserve(2 * nt + nt / 4);
-  for (uint32_t a = 0; a < nv; ++a) {
-    FaceRec* lo = recs.data() + start[a];
-    FaceRec* hi = recs.data() + start[a + 1];
-    std::sort(lo, hi, [](const FaceRec& x, const FaceRec& y) {
-      return x.b != y.b ? x.b < y.b : (x.c != y.c ? x.c < y.c : x.tet < y.tet);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t t = r.begin(); t < r.end(); ++t)
+        for (uint32_t k = 0; k < 4; ++k) {
+          const uint32_t a = Topology::tet_face(tets[t], k)[0];
+          recs[std::atomic_ref<uint32_t>(fill[a]).fetch_add(1, std::memory_order_relaxed)] = uint32_t(t) << 2 | k;
+        }
     });
-    for (FaceRec* r = lo; r < hi;) {
-      FaceRec* e = r + 1;
-      while (e < hi && e->b == r->b && e->c == r->c) ++e;
-      const uint32_t fid = static_cast<uint32_t>(topo.faces.size());
-      topo.faces.push_back({a, r->b, r->c});
-      topo.face_tets.push_back({r->tet, e - r > 1 ? r[1].tet : kNoTet});
-      if (e - r > 2) topo.nonmanifold_faces.push_back(fid);
-      if (e - r == 1) ++topo.num_boundary_faces;
-      for (FaceRec* q = r; q < e; ++q) topo.tet_faces[q->tet][q->local] = fid;
-      r = e;
-    }
   }
 
-  // Use sets: each face is listed under each of its (distinct) vertices.
-  topo.use_offsets.assign(nv + 1, 0);
-  for (const auto& f : topo.faces) {
-    ++topo.use_offsets[f[0] + 1];
-    if (f[1] != f[0]) ++topo.use_offsets[f[1] + 1];
-    if (f[2] != f[1]) ++topo.use_offsets[f[2] + 1];
-  }
-  for (size_t v = 0; v < nv; ++v) topo.use_offsets[v + 1] += topo.use_offsets[v];
-  topo.use_faces.resize(topo.use_offsets[nv]);
-  std::vector<uint32_t> fill(topo.use_offsets.begin(), topo.use_offsets.end() - 1);
-  for (uint32_t fi = 0; fi < topo.faces.size(); ++fi) {
-    const auto& f = topo.faces[fi];
-    topo.use_faces[fill[f[0]]++] = fi;
-    if (f[1] != f[0]) topo.use_faces[fill[f[1]]++] = fi;
-    if (f[2] != f[1]) topo.use_faces[fill[f[2]]++] = fi;
-  }
+  // Sort each bucket and count its unique faces (into `uniq`, then their
+  // first ids by a prefix sum: faces are numbered in (a, b, c) order).
+  std::vector<uint32_t> uniq(nv + 1, 0);
+  tbb::enumerable_thread_specific<std::vector<Keyed>> scratch;
+  auto sort_bucket = [&](uint32_t a, std::vector<Keyed>& ks) {
+    ks.clear();
+    for (uint32_t i = start[a]; i < start[a + 1]; ++i) {
+      const auto f = Topology::tet_face(tets[recs[i] >> 2], recs[i] & 3);
+      ks.push_back({f[1], f[2], recs[i]});
+    }
+    std::sort(ks.begin(), ks.end());
+  };
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, kGrain / 4), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<Keyed>& ks = scratch.local();
+    for (size_t a = r.begin(); a < r.end(); ++a) {
+      sort_bucket(uint32_t(a), ks);
+      uint32_t n = 0;
+      for (size_t i = 0; i < ks.size(); ++i) {
+        recs[start[a] + i] = ks[i].rec;
+        n += i == 0 || ks[i].b != ks[i - 1].b || ks[i].c != ks[i - 1].c;
+      }
+      uniq[a] = n;
+    }
+  });
+  prefix_sum(uniq);
+  const size_t nf = uniq[nv];
+
+  // Each face's tets: the sorted records of one face are adjacent.
+  topo.face_tets.resize(nf);
+  tbb::combinable<size_t> boundary;
+  tbb::enumerable_thread_specific<std::vector<uint32_t>> nonmanifold;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, kGrain / 4), [&](const tbb::blocked_range<size_t>& r) {
+    size_t nb = 0;
+    std::vector<uint32_t>& nm = nonmanifold.local();
+    for (size_t a = r.begin(); a < r.end(); ++a) {
+      uint32_t fid = uniq[a];
+      const uint32_t* lo = recs.data() + start[a];
+      const uint32_t* hi = recs.data() + start[a + 1];
+      auto key = [&](uint32_t rec) { return Topology::tet_face(tets[rec >> 2], rec & 3); };
+      for (const uint32_t* q = lo; q < hi; ++fid) {
+        const auto f = key(*q);
+        const uint32_t* e = q + 1;
+        while (e < hi && key(*e) == f) ++e;
+        topo.face_tets[fid] = {*q, e - q > 1 ? q[1] >> 2 : kNoTet};
+        if (e - q > 2) nm.push_back(fid);
+        nb += e - q == 1;
+        q = e;
+      }
+    }
+    boundary.local() += nb;
+  });
+  topo.num_boundary_faces = boundary.combine(std::plus<size_t>());
+  for (const auto& v : nonmanifold) topo.nonmanifold_faces.insert(topo.nonmanifold_faces.end(), v.begin(), v.end());
+  std::sort(topo.nonmanifold_faces.begin(), topo.nonmanifold_faces.end());
+  std::vector<uint32_t>().swap(recs);
 
   topo.tet_degenerate.resize(nt);
-  topo.tet_scalar_range.resize(nt);
-  for (size_t t = 0; t < nt; ++t) {
-    const Tet& tet = m.tets[t];
-    double lo = INFINITY, hi = -INFINITY, l2 = 0;
-    bool finite = true;
-    for (int a = 0; a < 4; ++a) {
-      const glm::dvec3& p = m.points[tet[a]];
-      const double s = m.has_scalars() ? m.scalars[tet[a]] : 0.0;
-      finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(s);
-      lo = std::min(lo, s);
-      hi = std::max(hi, s);
-      for (int b = a + 1; b < 4; ++b) {
-        const glm::dvec3 d = p - m.points[tet[b]];
-        l2 = std::max(l2, glm::dot(d, d));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t < r.end(); ++t) {
+      const Tet& tet = tets[t];
+      double l2 = 0;
+      bool finite = true;
+      for (int a = 0; a < 4; ++a) {
+        const glm::dvec3& p = m.points[tet[a]];
+        const double s = m.has_scalars() ? m.scalars[tet[a]] : 0.0;
+        finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(s);
+        for (int b = a + 1; b < 4; ++b) {
+          const glm::dvec3 d = p - m.points[tet[b]];
+          l2 = std::max(l2, glm::dot(d, d));
+        }
       }
+      // Same relative criterion as validation (validate.h).
+      topo.tet_degenerate[t] = !finite || !(std::abs(signed_volume6(m, tet)) > 1e-10 * l2 * std::sqrt(l2));
     }
-    // Same relative criterion as validation (validate.h).
-    topo.tet_degenerate[t] = !finite || !(std::abs(signed_volume6(m, tet)) > 1e-10 * l2 * std::sqrt(l2));
-    topo.tet_scalar_range[t] = {lo, hi};
-  }
+  });
   return topo;
+}
+
+std::vector<std::array<uint32_t, 4>> build_tet_faces(const TetMesh& m, const Topology& topo) {
+  // Faces are numbered in (a, b, c) order: the faces of smallest vertex a are
+  // a contiguous run, searched by (b, c).
+  const size_t nv = m.points.size(), nf = topo.num_faces();
+  std::vector<uint32_t> first(nv + 1, 0);
+  for (uint32_t f = 0; f < nf; ++f) ++first[topo.face(f)[0] + 1];
+  for (size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+  std::vector<std::array<uint32_t, 4>> out(m.tets.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, m.tets.size(), kGrain), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t < r.end(); ++t)
+      for (uint32_t k = 0; k < 4; ++k) {
+        const auto key = Topology::tet_face(m.tets[t], k);
+        uint32_t lo = first[key[0]], hi = first[key[0] + 1];
+        while (lo < hi) {
+          const uint32_t mid = lo + (hi - lo) / 2;
+          const auto f = topo.face(mid);
+          if (f[1] < key[1] || (f[1] == key[1] && f[2] < key[2])) lo = mid + 1;
+          else hi = mid;
+        }
+        out[t][k] = lo;
+      }
+  });
+  return out;
+}
+
+uint64_t topology_bytes(uint64_t tets) {
+  const uint64_t faces = tets * 21 / 10;
+  return faces * sizeof(FaceTets) + tets;
+}
+
+uint64_t topology_build_peak_bytes(uint64_t points, uint64_t tets) {
+  // Counts, fill cursors and unique counts per vertex; 4-byte records per
+  // tet face; the faces, allocated while the records live.
+  return 3 * (points + 1) * 4 + 16 * tets + topology_bytes(tets) - tets;
 }
 
 }  // namespace zs

@@ -1,7 +1,14 @@
-// Face topology of a tet mesh, built once: the unique triangular faces, the
-// one or two tets on each, the boundary flag, and each vertex's use set (the
-// unique faces incident to it — what the ZSweep sweep projects when it passes
-// the vertex; B-Convert digest §1.1).
+// Face topology of a tet mesh, built once per mesh and shared by every frame:
+// the unique triangular faces, the one or two tets on each, the boundary
+// flag, and each tet's degenerate flag. The sweep projects each face when the
+// plane passes its first vertex (B-Convert digest §1.1-1.2); it needs no
+// per-vertex use sets, so none are stored.
+//
+// Memory is the design at scale (docs/scaling.md): a face is 8 bytes — the
+// tet it was first found in with which of that tet's faces it is, and the
+// other tet — and its vertices are read back from that tet, so the topology
+// costs about 17 bytes per tet on a 5-tet grid split (faces ≈ 2.1 × tets),
+// plus 1 for the degenerate flag.
 #pragma once
 
 #include <array>
@@ -14,37 +21,65 @@
 namespace zs {
 
 constexpr uint32_t kNoTet = UINT32_MAX;
+// Tets are numbered in 30 bits: a face stores its first tet and local face
+// index in one word.
+constexpr uint64_t kMaxTopologyTets = uint64_t(1) << 30;
+
+// The tets on one face: `first` = tet << 2 | k, where the face is the one
+// opposite local vertex k of that tet; `second` = the other tet, kNoTet on a
+// boundary face.
+struct FaceTets {
+  uint32_t first, second;
+};
 
 struct Topology {
-  // Unique faces, vertex indices sorted ascending.
-  std::vector<std::array<uint32_t, 3>> faces;
-  // The tets on each face: [0] always valid, [1] = kNoTet on a boundary face.
-  // Faces shared by more than two tets (non-manifold) keep the first two here
+  // Unique faces in the order of their sorted vertex triples. Faces shared by
+  // more than two tets (non-manifold) keep the first two (lowest tet ids)
   // and are listed in `nonmanifold_faces`.
-  std::vector<std::array<uint32_t, 2>> face_tets;
+  std::vector<FaceTets> face_tets;
   std::vector<uint32_t> nonmanifold_faces;
-  // Per tet, its four face ids; face k is the one opposite local vertex k.
-  std::vector<std::array<uint32_t, 4>> tet_faces;
-  // Use sets in compressed rows: faces of vertex v are
-  // use_faces[use_offsets[v] .. use_offsets[v+1]).
-  std::vector<uint32_t> use_offsets;
-  std::vector<uint32_t> use_faces;
   size_t num_boundary_faces = 0;
-  // Per tet, what culling asks of it whatever the view and transfer function
-  // (render/volume/face_classes.h), computed once here from the mesh's points and
-  // scalars (rebuild the topology if they change): degenerate (zero volume by
-  // validation's relative criterion, or a non-finite point or scalar), and the
-  // scalar range over its four vertices.
+  // Per tet, whether it is degenerate whatever the view and transfer
+  // function: zero volume by validation's relative criterion, or a
+  // non-finite point or scalar (render/volume/face_classes.h).
   std::vector<uint8_t> tet_degenerate;
-  std::vector<std::array<double, 2>> tet_scalar_range;
+  // The mesh's tets the faces point into: the topology is valid while they
+  // live and are unchanged (rebuild it if the points, scalars or tets change).
+  std::span<const Tet> tets;
 
-  size_t num_faces() const { return faces.size(); }
-  bool is_boundary(uint32_t f) const { return face_tets[f][1] == kNoTet; }
-  std::span<const uint32_t> use_set(uint32_t v) const {
-    return {use_faces.data() + use_offsets[v], use_faces.data() + use_offsets[v + 1]};
+  size_t num_faces() const { return face_tets.size(); }
+  bool is_boundary(uint32_t f) const { return face_tets[f].second == kNoTet; }
+  uint32_t tet0(uint32_t f) const { return face_tets[f].first >> 2; }
+  uint32_t tet1(uint32_t f) const { return face_tets[f].second; }
+  // Face f's vertex ids, ascending.
+  std::array<uint32_t, 3> face(uint32_t f) const {
+    const FaceTets& ft = face_tets[f];
+    return tet_face(tets[ft.first >> 2], ft.first & 3);
+  }
+  // Face k of tet t (opposite local vertex k), vertex ids ascending.
+  static std::array<uint32_t, 3> tet_face(const Tet& t, uint32_t k) {
+    static constexpr uint8_t kOther[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    uint32_t a = t[kOther[k][0]], b = t[kOther[k][1]], c = t[kOther[k][2]];
+    if (a > b) std::swap(a, b);
+    if (b > c) std::swap(b, c);
+    if (a > b) std::swap(a, b);
+    return {a, b, c};
   }
 };
 
+// Builds the topology on the calling thread's TBB arena (all its threads);
+// the result does not depend on the thread count. Throws std::runtime_error
+// for meshes of kMaxTopologyTets tets or more.
 Topology build_topology(const TetMesh& m);
+
+// Each tet's four face ids (face k opposite local vertex k), for the
+// reference ray caster's tet walk; 16 bytes per tet, built on demand.
+std::vector<std::array<uint32_t, 4>> build_tet_faces(const TetMesh& m, const Topology& topo);
+
+// Bytes the topology of a mesh of `tets` tets holds, and the most the build
+// holds at once on top of the mesh (faces estimated at 2.1 per tet, the
+// 5-tet grid split's ratio; meshes with more boundary have fewer).
+uint64_t topology_bytes(uint64_t tets);
+uint64_t topology_build_peak_bytes(uint64_t points, uint64_t tets);
 
 }  // namespace zs

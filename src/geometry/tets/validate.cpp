@@ -55,7 +55,7 @@ size_t count_coincident_boundary(const TetMesh& m, const Topology& topo,
   edges.reserve(3 * topo.num_boundary_faces);
   for (uint32_t f = 0; f < topo.num_faces(); ++f) {
     if (!topo.is_boundary(f)) continue;
-    const auto& v = topo.faces[f];
+    const auto v = topo.face(f);
     for (int k = 0; k < 3; ++k) {
       uint32_t a = canon[v[k]], b = canon[v[(k + 1) % 3]];
       if (a == b) continue;
@@ -67,9 +67,9 @@ size_t count_coincident_boundary(const TetMesh& m, const Topology& topo,
     return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.face < y.face);
   });
   auto third = [&](uint32_t f, uint32_t a, uint32_t b) {
-    for (uint32_t v : topo.faces[f])
+    for (uint32_t v : topo.face(f))
       if (canon[v] != a && canon[v] != b) return v;
-    return topo.faces[f][0];
+    return topo.face(f)[0];
   };
   // Overlap needs the normals within ~2.6 degrees: a seam between two
   // triangulations of a slightly non-planar quad is not exactly flat.

@@ -36,7 +36,7 @@ BoundaryBins::BoundaryBins(const TetMesh& m, const Topology& topo, const SolidFa
   // Outward side: away from the fourth vertex of the face's tet.
   outward_sign_.resize(faces_.size());
   for (size_t k = 0; k < faces_.size(); ++k) {
-    const auto& fv = topo.faces[faces_[k]];
+    const auto fv = topo.face(faces_[k]);
     const Tet& t = m.tets[solid.tets[faces_[k]][0]];
     uint32_t opp = t[0];
     for (uint32_t v : t)
@@ -60,7 +60,7 @@ BoundaryBins::BoundaryBins(const TetMesh& m, const Topology& topo, const SolidFa
     int x0, y0, x1, y1;
   };
   auto rect_of = [&](uint32_t f, Rect* r) {
-    const auto& fv = topo.faces[f];
+    const auto fv = topo.face(f);
     double z[3];
     for (int k = 0; k < 3; ++k) z[k] = glm::dot(m.points[fv[k]] - eye, fwd);
     bool mirror = false;
@@ -116,7 +116,7 @@ void BoundaryBins::hits(uint32_t i, uint32_t j, const glm::dvec3& o, const glm::
                         std::vector<BoundaryHit>* out) const {
   out->clear();
   auto test = [&](uint32_t k) {
-    const auto& fv = topo_.faces[faces_[k]];
+    const auto fv = topo_.face(faces_[k]);
     const glm::dvec3 &a = m_.points[fv[0]], &b = m_.points[fv[1]], &c = m_.points[fv[2]];
     double t;
     if (!line_hits_triangle(o, d, a, b, c, &t)) return;

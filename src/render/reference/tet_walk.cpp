@@ -9,7 +9,7 @@
 
 namespace zs {
 
-bool tet_exit(const TetMesh& m, const Topology& topo, uint32_t tet, uint32_t entered_face, const glm::dvec3& o,
+bool tet_exit(const TetMesh& m, const SolidFaces& solid, uint32_t tet, uint32_t entered_face, const glm::dvec3& o,
               const glm::dvec3& d, int* exit_local, double* t_exit, double lambda_o[4], double dlambda[4]) {
   const Tet& tv = m.tets[tet];
   const glm::dvec3 p0 = m.points[tv[0]];
@@ -34,7 +34,7 @@ bool tet_exit(const TetMesh& m, const Topology& topo, uint32_t tet, uint32_t ent
   int best = -1;
   double best_t = INFINITY;
   for (int k = 0; k < 4; ++k) {
-    if (topo.tet_faces[tet][size_t(k)] == entered_face || !(dlambda[k] < 0)) continue;
+    if (solid.tet_faces[tet][size_t(k)] == entered_face || !(dlambda[k] < 0)) continue;
     const double tk = -lambda_o[k] / dlambda[k];
     if (tk < best_t) best_t = tk, best = k;
   }
@@ -55,6 +55,7 @@ SolidFaces build_solid_faces(const TetMesh& m, const Topology& topo) {
   SolidFaces s;
   s.flat.resize(m.num_tets());
   for (size_t t = 0; t < m.num_tets(); ++t) s.flat[t] = tet_is_flat(m, m.tets[t]);
+  s.tet_faces = build_tet_faces(m, topo);
   s.tets.resize(topo.num_faces());
   auto add = [&](uint32_t f, uint32_t t) {
     auto& ft = s.tets[f];
@@ -64,15 +65,15 @@ SolidFaces build_solid_faces(const TetMesh& m, const Topology& topo) {
   };
   for (uint32_t f = 0; f < topo.num_faces(); ++f) {
     s.tets[f] = {kNoTet, kNoTet};
-    add(f, topo.face_tets[f][0]);
-    if (topo.face_tets[f][1] != kNoTet) add(f, topo.face_tets[f][1]);
+    add(f, topo.tet0(f));
+    if (topo.tet1(f) != kNoTet) add(f, topo.tet1(f));
   }
   // Faces with more than two tets keep only two in the topology: find the rest.
   if (!topo.nonmanifold_faces.empty()) {
     std::vector<uint8_t> nm(topo.num_faces(), 0);
     for (uint32_t f : topo.nonmanifold_faces) nm[f] = 1;
     for (uint32_t t = 0; t < m.num_tets(); ++t)
-      for (uint32_t f : topo.tet_faces[t])
+      for (uint32_t f : s.tet_faces[t])
         if (nm[f]) add(f, t);
   }
   return s;

@@ -27,6 +27,7 @@ namespace zs {
 struct SolidFaces {
   std::vector<uint8_t> flat;                      // per tet
   std::vector<std::array<uint32_t, 2>> tets;      // per face: solid tets, kNoTet padded
+  std::vector<std::array<uint32_t, 4>> tet_faces;  // per tet: face k opposite local vertex k (build_tet_faces)
   bool boundary(uint32_t f) const { return tets[f][0] != kNoTet && tets[f][1] == kNoTet; }
 };
 SolidFaces build_solid_faces(const TetMesh& m, const Topology& topo);
@@ -53,7 +54,7 @@ WalkResult walk_line(const TetMesh& m, const Topology& topo, const SolidFaces& s
 // Per-tet step, exposed for the template above and for tests: the tet's exit
 // face (local index) and t, given the face it was entered through. Returns
 // false when there is no exit in the line's direction (a flat tet).
-bool tet_exit(const TetMesh& m, const Topology& topo, uint32_t tet, uint32_t entered_face, const glm::dvec3& o,
+bool tet_exit(const TetMesh& m, const SolidFaces& solid, uint32_t tet, uint32_t entered_face, const glm::dvec3& o,
               const glm::dvec3& d, int* exit_local, double* t_exit, double lambda_o[4], double dlambda[4]);
 
 template <class Emit>
@@ -67,7 +68,7 @@ WalkResult walk_line(const TetMesh& m, const Topology& topo, const SolidFaces& s
     ++r.steps;
     int k;
     double t1, lo[4], dl[4];
-    if (!tet_exit(m, topo, tet, face, o, d, &k, &t1, lo, dl)) {
+    if (!tet_exit(m, solid, tet, face, o, d, &k, &t1, lo, dl)) {
       r.lost = true;
       break;
     }
@@ -80,7 +81,7 @@ WalkResult walk_line(const TetMesh& m, const Topology& topo, const SolidFaces& s
     }
     emit(WalkSegment{t, t1, s0, s1, tet});
     t = t1;
-    face = topo.tet_faces[tet][size_t(k)];
+    face = solid.tet_faces[tet][size_t(k)];
     const auto& ft = solid.tets[face];
     if (ft[1] == kNoTet) break;  // left the (solid) mesh
     tet = ft[0] == tet ? ft[1] : ft[0];

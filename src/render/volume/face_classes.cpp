@@ -4,56 +4,83 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
 
 namespace zs {
+
+namespace {
+constexpr size_t kGrain = 1 << 14;
+}
 
 std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, const TransferFunction& tf,
                                       const View& view, FaceClassCounts* counts,
                                       std::vector<uint8_t>* tet_visible) {
   const size_t nt = m.num_tets();
   std::vector<uint8_t> visible(nt, 0);
-  for (size_t t = 0; t < nt; ++t) {
-    if (topo.tet_degenerate[t]) {
-      ++counts->tets_degenerate;
-      continue;
+  tbb::combinable<FaceClassCounts> part;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+    FaceClassCounts& c = part.local();
+    for (size_t t = r.begin(); t < r.end(); ++t) {
+      if (topo.tet_degenerate[t]) {
+        ++c.tets_degenerate;
+        continue;
+      }
+      // The scalar range over the tet's vertices (no scalars: 0).
+      double lo = INFINITY, hi = -INFINITY;
+      for (uint32_t v : m.tets[t]) {
+        const double s = m.has_scalars() ? m.scalars[v] : 0.0;
+        lo = std::min(lo, s);
+        hi = std::max(hi, s);
+      }
+      if (tf.transparent_over(lo, hi)) {
+        ++c.tets_invisible;
+        continue;
+      }
+      visible[t] = 1;
     }
-    if (tf.transparent_over(topo.tet_scalar_range[t][0], topo.tet_scalar_range[t][1])) {
-      ++counts->tets_invisible;
-      continue;
-    }
-    visible[t] = 1;
-  }
+  });
 
   std::vector<FaceClass> cls(topo.num_faces(), FaceClass::Culled);
   const glm::dvec3 eye = view.eye(), fwd = view.forward();
-  for (uint32_t f = 0; f < topo.num_faces(); ++f) {
-    const auto& ft = topo.face_tets[f];
-    const bool v0 = visible[ft[0]] != 0;
-    const bool v1 = ft[1] != kNoTet && visible[ft[1]] != 0;
-    if (!v0 && !v1) {
-      ++counts->faces_culled;
-      continue;
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(topo.num_faces()), kGrain),
+                    [&](const tbb::blocked_range<uint32_t>& r) {
+    FaceClassCounts& c = part.local();
+    for (uint32_t f = r.begin(); f < r.end(); ++f) {
+      const uint32_t t0 = topo.tet0(f), t1 = topo.tet1(f);
+      const bool v0 = visible[t0] != 0;
+      const bool v1 = t1 != kNoTet && visible[t1] != 0;
+      if (!v0 && !v1) {
+        ++c.faces_culled;
+        continue;
+      }
+      if (v0 && v1) {
+        cls[f] = FaceClass::Interior;
+        continue;
+      }
+      // One visible side: find that tet's vertex off this face.
+      const uint32_t t = v0 ? t0 : t1;
+      const auto fv = topo.face(f);
+      uint32_t opp = m.tets[t][0];
+      for (uint32_t v : m.tets[t])
+        if (v != fv[0] && v != fv[1] && v != fv[2]) opp = v;
+      const glm::dvec3 a = m.points[fv[0]];
+      const glm::dvec3 n = glm::cross(m.points[fv[1]] - a, m.points[fv[2]] - a);
+      const double side_tet = glm::dot(n, m.points[opp] - a);
+      // The side of the plane the rays come from: the eye (perspective), or
+      // against the view direction (orthographic).
+      const double side_eye = view.perspective() ? glm::dot(n, eye - a) : -glm::dot(n, fwd);
+      // Rays cross from the eye's side to the other: they enter the tet iff the
+      // tet is on the other side.
+      cls[f] = (side_tet > 0) != (side_eye > 0) ? FaceClass::Entry : FaceClass::Exit;
     }
-    if (v0 && v1) {
-      cls[f] = FaceClass::Interior;
-      continue;
-    }
-    // One visible side: find that tet's vertex off this face.
-    const uint32_t t = v0 ? ft[0] : ft[1];
-    const auto& fv = topo.faces[f];
-    uint32_t opp = m.tets[t][0];
-    for (uint32_t v : m.tets[t])
-      if (v != fv[0] && v != fv[1] && v != fv[2]) opp = v;
-    const glm::dvec3 a = m.points[fv[0]];
-    const glm::dvec3 n = glm::cross(m.points[fv[1]] - a, m.points[fv[2]] - a);
-    const double side_tet = glm::dot(n, m.points[opp] - a);
-    // The side of the plane the rays come from: the eye (perspective), or
-    // against the view direction (orthographic).
-    const double side_eye = view.perspective() ? glm::dot(n, eye - a) : -glm::dot(n, fwd);
-    // Rays cross from the eye's side to the other: they enter the tet iff the
-    // tet is on the other side.
-    cls[f] = (side_tet > 0) != (side_eye > 0) ? FaceClass::Entry : FaceClass::Exit;
-  }
+  });
+  part.combine_each([&](const FaceClassCounts& c) {
+    counts->tets_invisible += c.tets_invisible;
+    counts->tets_degenerate += c.tets_degenerate;
+    counts->faces_culled += c.faces_culled;
+  });
   if (tet_visible) *tet_visible = std::move(visible);
   return cls;
 }

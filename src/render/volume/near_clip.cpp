@@ -61,7 +61,7 @@ void clip_at_near_plane(const TetMesh& m, const Topology& topo, const View& view
   // Faces reaching behind the plane: keep their front part.
   for (uint32_t f = 0; f < topo.num_faces(); ++f) {
     if (cls[f] == FaceClass::Culled) continue;
-    const auto& fv = topo.faces[f];
+    const auto fv = topo.face(f);
     const int nb = behind(fv[0]) + behind(fv[1]) + behind(fv[2]);
     if (nb == 0) continue;
     (*clipped)[f] = 1;

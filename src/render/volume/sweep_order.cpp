@@ -1,7 +1,12 @@
 #include "render/volume/sweep_order.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
 
 namespace zs {
 
@@ -18,99 +23,122 @@ bool pixel_range(const ScreenVertex v[3], uint32_t w, uint32_t h, int* i0, int* 
   return *i0 <= *i1 && *j0 <= *j1;
 }
 
+TileBox item_tile_box(const ScreenVertex v[3], const ScreenTiling& t) {
+  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  pixel_range(v, t.width, t.height, &i0, &i1, &j0, &j1);
+  return {uint32_t(i0) / t.tile, uint32_t(i1) / t.tile, uint32_t(j0) / t.tile, uint32_t(j1) / t.tile};
+}
+
+uint32_t single_tile(const TileBox& x, const ScreenTiling& t) {
+  const uint32_t cols = (t.width + t.tile - 1) / t.tile;
+  return x.c0 == x.c1 && x.r0 == x.r1 ? x.r0 * cols + x.c0 : kManyTiles;
+}
+
 namespace {
 
 enum class Cover { Yes, Degenerate, Offscreen };
 
-// Whether a triangle can produce fragments, and the tiles it touches.
-Cover tile_box(const ScreenVertex v[3], const ScreenTiling& t, TileBox* box) {
+// Whether a triangle can produce fragments.
+Cover cover(const ScreenVertex v[3], const ScreenTiling& t) {
   const double det = screen_det(v);
   if (det == 0 || !std::isfinite(det)) return Cover::Degenerate;
   int i0, i1, j0, j1;
-  if (!pixel_range(v, t.width, t.height, &i0, &i1, &j0, &j1)) return Cover::Offscreen;
-  *box = {uint32_t(i0) / t.tile, uint32_t(i1) / t.tile, uint32_t(j0) / t.tile, uint32_t(j1) / t.tile};
-  return Cover::Yes;
+  return pixel_range(v, t.width, t.height, &i0, &i1, &j0, &j1) ? Cover::Yes : Cover::Offscreen;
 }
 
 constexpr uint32_t kDropped = UINT32_MAX;
+constexpr size_t kGrain = 1 << 14;
+
+struct Dropped {
+  uint64_t degenerate = 0, offscreen = 0;
+  void add(Cover c) { ++(c == Cover::Degenerate ? degenerate : offscreen); }
+};
 
 }  // namespace
 
 SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv, const std::vector<FaceClass>& cls,
-                       const std::vector<uint8_t>& done, std::vector<VertexHeap::Entry> events,
+                       const std::vector<uint8_t>& done, const std::vector<SweepEvent>& events,
                        const std::vector<NearTriangle>& near, double z_origin, const ScreenTiling& tiling) {
   SweepItems it;
-  auto count = [&](Cover c) { ++(c == Cover::Degenerate ? it.degenerate : it.offscreen); };
+  Dropped near_dropped;
   for (size_t k = 0; k < near.size(); ++k) {
-    TileBox box;
-    const Cover c = tile_box(near[k].v, tiling, &box);
+    const Cover c = cover(near[k].v, tiling);
     if (c != Cover::Yes) {
-      count(c);
+      near_dropped.add(c);
       continue;
     }
-    float zmax = -INFINITY;
-    for (const ScreenVertex& v : near[k].v) zmax = std::max(zmax, float(v.z - z_origin));
-    it.id.push_back(kNearItem | uint32_t(k));
-    it.tri.push_back({0, 0, 0});
-    it.z_sweep.push_back(-INFINITY);
-    it.z_max.push_back(zmax);
-    it.box.push_back(box);
+    it.items.push_back({kNearItem | uint32_t(k), -INFINITY, single_tile(item_tile_box(near[k].v, tiling), tiling)});
   }
-  // The sweep: each event vertex's rank in heap order, and the plane's depth there.
-  const size_t n_events = events.size();
+  // The sweep: each event vertex's rank in sweep order, and the plane's depth there.
+  const uint32_t n_events = uint32_t(events.size());
   std::vector<uint32_t> rank(sv.size(), kDropped);
   std::vector<float> z_at(n_events);
-  VertexHeap heap;
-  heap.assign(std::move(events));
-  for (uint32_t r = 0; r < n_events; ++r) {
-    const VertexHeap::Entry ev = heap.pop();
-    rank[ev.v] = r;
-    z_at[r] = float(ev.z - z_origin);
+  {
+    const std::vector<SweepKey> keys = sorted_events(events);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_events, kGrain), [&](const tbb::blocked_range<uint32_t>& r) {
+      for (uint32_t i = r.begin(); i < r.end(); ++i) {
+        const SweepEvent ev = sweep_event(keys[i]);
+        rank[ev.v] = i;
+        z_at[i] = float(ev.z - z_origin);
+      }
+    });
   }
   // A face is projected when the first of its vertices is swept: at the
-  // smallest rank among them. Faces of one vertex follow in id order (its use
-  // set's order). Counting sort by that rank, dropping faces that cannot
-  // produce a fragment.
+  // smallest rank among them. Faces of one vertex follow in id order. A
+  // counting sort by that rank (filled in any order, then each rank's short
+  // run sorted by id), dropping faces that cannot produce a fragment.
   const uint32_t nf = uint32_t(topo.num_faces());
   std::vector<uint32_t> key(nf, kDropped);
-  std::vector<uint32_t> start(n_events + 1, 0);
-  std::vector<TileBox> kept_box;  // the kept faces' boxes, in face order
-  kept_box.reserve(nf / 2);
-  for (uint32_t f = 0; f < nf; ++f) {
-    if (done[f] || cls[f] == FaceClass::Culled) continue;
-    const auto& fv = topo.faces[f];
-    const uint32_t r = std::min({rank[fv[0]], rank[fv[1]], rank[fv[2]]});
-    if (r == kDropped) continue;  // no vertex in front of the near plane: clipped
-    const ScreenVertex v[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
-    TileBox box;
-    const Cover c = tile_box(v, tiling, &box);
-    if (c != Cover::Yes) {
-      count(c);
-      continue;
+  std::vector<uint32_t> start(size_t(n_events) + 1, 0);
+  tbb::combinable<Dropped> dropped;
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nf, kGrain), [&](const tbb::blocked_range<uint32_t>& r) {
+    Dropped& d = dropped.local();
+    for (uint32_t f = r.begin(); f < r.end(); ++f) {
+      if ((!done.empty() && done[f]) || cls[f] == FaceClass::Culled) continue;
+      const auto fv = topo.face(f);
+      const uint32_t rk = std::min({rank[fv[0]], rank[fv[1]], rank[fv[2]]});
+      if (rk == kDropped) continue;  // no vertex in front of the near plane: clipped
+      const ScreenVertex v[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
+      const Cover c = cover(v, tiling);
+      if (c != Cover::Yes) {
+        d.add(c);
+        continue;
+      }
+      key[f] = rk;
+      std::atomic_ref<uint32_t>(start[rk + 1]).fetch_add(1, std::memory_order_relaxed);
     }
-    key[f] = r;
-    ++start[r + 1];
-    kept_box.push_back(box);
-  }
+  });
+  it.degenerate = near_dropped.degenerate;
+  it.offscreen = near_dropped.offscreen;
+  dropped.combine_each([&](const Dropped& d) {
+    it.degenerate += d.degenerate;
+    it.offscreen += d.offscreen;
+  });
   for (size_t r = 0; r < n_events; ++r) start[r + 1] += start[r];
   const size_t base = it.size(), total = base + start[n_events];
-  it.id.resize(total);
-  it.tri.resize(total);
-  it.z_sweep.resize(total);
-  it.z_max.resize(total);
-  it.box.resize(total);
-  size_t kept = 0;
-  for (uint32_t f = 0; f < nf; ++f) {
-    const uint32_t r = key[f];
-    if (r == kDropped) continue;
-    const size_t k = base + start[r]++;
-    const auto& fv = topo.faces[f];
-    it.box[k] = kept_box[kept++];
-    it.id[k] = f;
-    it.tri[k] = fv;
-    it.z_sweep[k] = z_at[r];
-    it.z_max[k] = float(std::max({sv[fv[0]].z, sv[fv[1]].z, sv[fv[2]].z}) - z_origin);
+  it.items.resize(total);
+  {
+    // Faces in id order here (their vertices are near in memory): each
+    // item's single tile is found now, not in the bins' sweep-ordered passes.
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nf, kGrain), [&](const tbb::blocked_range<uint32_t>& r) {
+      for (uint32_t f = r.begin(); f < r.end(); ++f) {
+        if (key[f] == kDropped) continue;
+        const auto fv = topo.face(f);
+        const ScreenVertex v[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
+        const size_t k = base + std::atomic_ref<uint32_t>(fill[key[f]]).fetch_add(1, std::memory_order_relaxed);
+        it.items[k] = {f, z_at[key[f]], single_tile(item_tile_box(v, tiling), tiling)};
+      }
+    });
   }
+  std::vector<uint32_t>().swap(key);
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_events, kGrain / 4), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t rk = r.begin(); rk < r.end(); ++rk) {
+      SweepItem* lo = it.items.data() + base + start[rk];
+      SweepItem* hi = it.items.data() + base + start[rk + 1];
+      if (hi - lo > 1) std::sort(lo, hi, [](const SweepItem& a, const SweepItem& b) { return a.id < b.id; });
+    }
+  });
   return it;
 }
 

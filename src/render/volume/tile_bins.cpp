@@ -1,23 +1,54 @@
 #include "render/volume/tile_bins.h"
 
+#include <algorithm>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 namespace zs {
 
-TileBins bin_items(const SweepItems& items, const ScreenTiling& t) {
+TileBins bin_items(const SweepItems& items, const Topology& topo, const std::vector<ScreenVertex>& sv,
+                   const std::vector<NearTriangle>& near, const ScreenTiling& t) {
   TileBins b;
   b.cols = (t.width + t.tile - 1) / t.tile;
   b.rows = (t.height + t.tile - 1) / t.tile;
-  b.offset.assign(size_t(b.cols) * b.rows + 1, 0);
-  for (const TileBox& x : items.box)
-    for (uint32_t r = x.r0; r <= x.r1; ++r)
-      for (uint32_t c = x.c0; c <= x.c1; ++c) ++b.offset[size_t(r) * b.cols + c + 1];
-  for (size_t k = 1; k < b.offset.size(); ++k) b.offset[k] += b.offset[k - 1];
-  b.items.resize(b.offset.back());
-  std::vector<uint64_t> fill(b.offset.begin(), b.offset.end() - 1);
-  for (size_t k = 0; k < items.size(); ++k) {
-    const TileBox& x = items.box[k];
-    for (uint32_t r = x.r0; r <= x.r1; ++r)
-      for (uint32_t c = x.c0; c <= x.c1; ++c) b.items[fill[size_t(r) * b.cols + c]++] = uint32_t(k);
+  const size_t tiles = size_t(b.cols) * b.rows, n = items.size();
+  // Consecutive runs of items (chunks) count their entries per tile, and
+  // each chunk's entries of a tile follow the earlier chunks': the bins stay
+  // in sweep order however many threads fill them. Boxes over several tiles
+  // are recomputed in both passes rather than stored (16 bytes per face).
+  size_t chunks = std::clamp<size_t>(n / 65536, 1, 4 * size_t(tbb::this_task_arena::max_concurrency()));
+  while (chunks > 1 && chunks * tiles > (size_t(1) << 22)) chunks /= 2;
+  std::vector<uint64_t> at(chunks * tiles, 0);
+  auto each = [&](size_t c, auto&& visit) {
+    const size_t k0 = n * c / chunks, k1 = n * (c + 1) / chunks;
+    uint64_t* counts = at.data() + c * tiles;
+    for (size_t k = k0; k < k1; ++k) {
+      if (items[k].tile != kManyTiles) {
+        visit(counts[items[k].tile], uint32_t(k));
+        continue;
+      }
+      ScreenVertex v[3];
+      item_triangle(items, k, topo, sv, near, v);
+      const TileBox x = item_tile_box(v, t);
+      for (uint32_t r = x.r0; r <= x.r1; ++r)
+        for (uint32_t col = x.c0; col <= x.c1; ++col) visit(counts[size_t(r) * b.cols + col], uint32_t(k));
+    }
+  };
+  tbb::parallel_for(size_t(0), chunks, [&](size_t c) { each(c, [](uint64_t& count, uint32_t) { ++count; }); });
+  b.offset.assign(tiles + 1, 0);
+  uint64_t run = 0;
+  for (size_t tile = 0; tile < tiles; ++tile) {
+    b.offset[tile] = run;
+    for (size_t c = 0; c < chunks; ++c) {
+      const uint64_t count = at[c * tiles + tile];
+      at[c * tiles + tile] = run;  // where chunk c's entries of this tile start
+      run += count;
+    }
   }
+  b.offset[tiles] = run;
+  b.items.resize(run);
+  tbb::parallel_for(size_t(0), chunks, [&](size_t c) { each(c, [&](uint64_t& pos, uint32_t k) { b.items[pos++] = k; }); });
   return b;
 }
 

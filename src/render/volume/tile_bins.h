@@ -15,7 +15,9 @@ struct TileBins {
   std::vector<uint32_t> items;   // indices into SweepItems, in sweep order
 };
 
-// Bins for the tiling the items were made with (sweep_order).
-TileBins bin_items(const SweepItems& items, const ScreenTiling& tiling);
+// Bins for the tiling the items were made with (sweep_order), on the calling
+// thread's TBB arena; the bins do not depend on its thread count.
+TileBins bin_items(const SweepItems& items, const Topology& topo, const std::vector<ScreenVertex>& sv,
+                   const std::vector<NearTriangle>& near, const ScreenTiling& tiling);
 
 }  // namespace zs

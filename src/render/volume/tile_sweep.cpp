@@ -67,7 +67,7 @@ class TileSweep {
     float z_target = -INFINITY;
     for (uint64_t b = bins.offset[tile]; b < bins.offset[tile + 1]; ++b) {
       const uint32_t k = bins.items[b];
-      const float z_sweep = in_.items.z_sweep[k];
+      const float z_sweep = in_.items[k].z_sweep;
       if (z_sweep > z_target) {
         // The sweep passed z_target: every face still to come starts at or
         // after z_sweep, so every fragment before it is final. Composite them
@@ -78,10 +78,10 @@ class TileSweep {
         }
         z_target = z_sweep;
       }
-      z_target = std::max(z_target, in_.items.z_max[k]);
       ScreenVertex tri[3];
-      item_triangle(in_.items, k, in_.sv, in_.near, tri);
-      const uint32_t id = in_.items.id[k];
+      item_triangle(in_.items, k, in_.topo, in_.sv, in_.near, tri);
+      z_target = std::max(z_target, item_z_max(tri, in_.z_origin));
+      const uint32_t id = in_.items[k].id;
       project(tri, (id & kNearItem) ? in_.near[id & ~kNearItem].cls : in_.cls[id], z_sweep);
     }
     composite_all(INFINITY);

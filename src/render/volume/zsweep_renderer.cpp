@@ -9,7 +9,11 @@
 #include <stdexcept>
 #include <string>
 
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
 
 #include "raster/image_sink.h"
 #include "raster/tile_loop.h"
@@ -60,11 +64,13 @@ void add_stats(RenderStats& a, const RenderStats& b) {
 constexpr uint64_t kMinPoolFragments = 256;
 
 uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces) {
-  // Per vertex: view position, heap entry (and its copy), rank; per face:
-  // class, done flag, sort key, and its sweep item (id, vertices, z_sweep,
-  // z_max, tile box).
-  const uint64_t per_point = sizeof(ScreenVertex) + 2 * sizeof(VertexHeap::Entry) + 8;
-  return num_points * per_point + num_faces * (2 + 4 + 4 + 12 + 8 + sizeof(TileBox));
+  // Per vertex: view position; while the order is built, its event, sort
+  // key, rank, plane depth, run start and "on a face" flag. Per face: class,
+  // the order's key (while it is built) and its sweep item (id, z_sweep).
+  // The near-plane clip's flags (a byte per face and per tet) are not
+  // counted: only views with vertices behind the eye need them.
+  const uint64_t per_point = sizeof(ScreenVertex) + sizeof(SweepEvent) + sizeof(SweepKey) + 4 + 4 + 4 + 1;
+  return num_points * per_point + num_faces * (1 + 4 + sizeof(SweepItem));
 }
 
 RenderPlan plan_render(uint64_t budget, uint64_t shared, uint64_t tile_pixels, int threads) {
@@ -139,13 +145,33 @@ struct ZSweepRenderer::Impl {
     S.tiles = grid.count();
     const uint64_t tile_state = grid.max_tile_pixels() * kTilePixelBytes;
 
-    in.sv.resize(mesh.num_points());
-    double zmin = INFINITY;
-    for (uint32_t v = 0; v < mesh.num_points(); ++v) {
-      const ViewPoint p = view.project(mesh.points[v]);
-      in.sv[v] = {p.x, p.y, p.z, mesh.has_scalars() ? mesh.scalars[v] : 0.0, v};
-      if (p.z > 0) zmin = std::min(zmin, p.z);
-    }
+    // The per-view set-up runs on the render's threads; none of its results
+    // depends on how many.
+    tbb::task_arena(threads).execute([&] { prepare(mesh, topo); });
+    const uint64_t shared = shared0 + in.bins.items.size() * 4 + in.bins.offset.size() * 8;
+    plan = plan_render(budget, shared, grid.max_tile_pixels(), threads);
+    if (plan.max_fragments == 0)
+      throw budget_too_small(rs, budget, shared + uint64_t(threads) * (tile_state + kMinPoolFragments * 16));
+    S.fragment_capacity = plan.max_fragments;
+    S.ms_setup = ms_since(t_start);
+  }
+
+  // View, classes, near-plane clip, sweep order and bins (in.*, setup.*).
+  void prepare(const TetMesh& mesh, const Topology& topo) {
+    RenderStats& S = setup;
+    const size_t nv = mesh.num_points();
+    in.sv.resize(nv);
+    const double zmin = tbb::parallel_reduce(
+        tbb::blocked_range<uint32_t>(0, uint32_t(nv), 1 << 14), double(INFINITY),
+        [&](const tbb::blocked_range<uint32_t>& r, double z) {
+          for (uint32_t v = r.begin(); v < r.end(); ++v) {
+            const ViewPoint p = view.project(mesh.points[v]);
+            in.sv[v] = {p.x, p.y, p.z, mesh.has_scalars() ? mesh.scalars[v] : 0.0, v};
+            if (p.z > 0) z = std::min(z, p.z);
+          }
+          return z;
+        },
+        [](double a, double b) { return std::min(a, b); });
     // Fragments store depth relative to the nearest vertex, as float: keeps
     // their precision when the camera is far from the mesh.
     in.z_origin = std::isfinite(zmin) ? zmin : 0.0;
@@ -153,42 +179,46 @@ struct ZSweepRenderer::Impl {
     // Perspective rays start at the eye: keep a tiny positive near distance so
     // that projecting never divides by zero. Orthographic rays start on the eye plane.
     const double z_near = view.perspective() ? 1e-7 * std::max(bounds_of(mesh).diagonal(), 1e-300) : 0.0;
+    const bool clip = std::any_of(in.sv.begin(), in.sv.end(), [&](const ScreenVertex& v) { return !(v.z > z_near); });
     FaceClassCounts fc;
-    std::vector<uint8_t> tet_visible;
-    in.cls = classify_faces(mesh, topo, rs.tf, view, &fc, &tet_visible);
-    std::vector<uint8_t> clipped(topo.num_faces(), 0);
-    if (std::any_of(in.sv.begin(), in.sv.end(), [&](const ScreenVertex& v) { return !(v.z > z_near); }))
+    std::vector<uint8_t> tet_visible;  // only the near-plane clip needs it
+    in.cls = classify_faces(mesh, topo, rs.tf, view, &fc, clip ? &tet_visible : nullptr);
+    std::vector<uint8_t> clipped;  // empty: nothing clipped
+    if (clip) {
+      clipped.assign(topo.num_faces(), 0);
       clip_at_near_plane(mesh, topo, view, in.sv, in.cls, tet_visible, z_near, &in.near, &clipped);
-    S.faces_clipped = uint64_t(std::count(clipped.begin(), clipped.end(), 1));
+      S.faces_clipped = uint64_t(std::count(clipped.begin(), clipped.end(), 1));
+    }
+    std::vector<uint8_t>().swap(tet_visible);
     S.tets_invisible = fc.tets_invisible;
     S.tets_degenerate = fc.tets_degenerate;
     S.faces_culled = fc.faces_culled;
-    std::vector<VertexHeap::Entry> events;
-    for (uint32_t v = 0; v < mesh.num_points(); ++v) {
-      if (!(in.sv[v].z > z_near) || !std::isfinite(in.sv[v].z)) continue;
-      for (uint32_t f : topo.use_set(v))
-        if (in.cls[f] != FaceClass::Culled) {
-          events.push_back({in.sv[v].z, v});
-          break;
-        }
+    // The sweep's events: vertices in front of the near plane on a face that
+    // is not culled.
+    std::vector<SweepEvent> events;
+    {
+      std::vector<uint8_t> on_face(nv, 0);
+      tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(topo.num_faces()), 1 << 14),
+                        [&](const tbb::blocked_range<uint32_t>& r) {
+        for (uint32_t f = r.begin(); f < r.end(); ++f)
+          if (in.cls[f] != FaceClass::Culled)
+            for (uint32_t v : topo.face(f)) std::atomic_ref<uint8_t>(on_face[v]).store(1, std::memory_order_relaxed);
+      });
+      for (uint32_t v = 0; v < nv; ++v)
+        if (on_face[v] && in.sv[v].z > z_near && std::isfinite(in.sv[v].z)) events.push_back({in.sv[v].z, v});
     }
     const auto t_order = Clock::now();
     const ScreenTiling tiling{rs.width, rs.height, rs.tile_size};
-    in.items = sweep_order(topo, in.sv, in.cls, clipped, std::move(events), in.near, in.z_origin, tiling);
+    in.items = sweep_order(topo, in.sv, in.cls, clipped, events, in.near, in.z_origin, tiling);
+    std::vector<SweepEvent>().swap(events);
+    std::vector<uint8_t>().swap(clipped);
     const auto t_bins = Clock::now();
     S.ms_order = ms_since(t_order);
-    in.bins = bin_items(in.items, tiling);
+    in.bins = bin_items(in.items, topo, in.sv, in.near, tiling);
     S.ms_binning = ms_since(t_bins);
     S.faces_offscreen = in.items.offscreen;
     S.faces_degenerate = in.items.degenerate;
     S.bin_entries = in.bins.items.size();
-
-    const uint64_t shared = shared0 + in.bins.items.size() * 4 + in.bins.offset.size() * 8;
-    plan = plan_render(budget, shared, grid.max_tile_pixels(), threads);
-    if (plan.max_fragments == 0)
-      throw budget_too_small(rs, budget, shared + uint64_t(threads) * (tile_state + kMinPoolFragments * 16));
-    S.fragment_capacity = plan.max_fragments;
-    S.ms_setup = ms_since(t_start);
   }
 };
 

@@ -29,6 +29,16 @@ TetMesh grid(uint32_t n, double scale = 1.0, glm::dvec3 offset = {0, 0, 0}) {
   return m;
 }
 
+// How many faces have vertex v.
+size_t faces_on(const Topology& t, uint32_t v) {
+  size_t n = 0;
+  for (uint32_t f = 0; f < t.num_faces(); ++f) {
+    const auto fv = t.face(f);
+    n += fv[0] == v || fv[1] == v || fv[2] == v;
+  }
+  return n;
+}
+
 TEST(Topology, TwoTetsSharingAFace) {
   TetMesh m;
   m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -37,13 +47,16 @@ TEST(Topology, TwoTetsSharingAFace) {
   EXPECT_EQ(t.num_faces(), 7u);
   EXPECT_EQ(t.num_boundary_faces, 6u);
   // The shared face (0,1,2) knows both tets; each tet knows it.
-  const uint32_t shared = t.tet_faces[0][3];
-  EXPECT_EQ(t.faces[shared], (std::array<uint32_t, 3>{0, 1, 2}));
-  EXPECT_EQ(t.tet_faces[1][3], shared);
+  const auto tf = build_tet_faces(m, t);
+  const uint32_t shared = tf[0][3];
+  EXPECT_EQ(t.face(shared), (std::array<uint32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(tf[1][3], shared);
+  EXPECT_EQ(t.tet0(shared), 0u);
+  EXPECT_EQ(t.tet1(shared), 1u);
   EXPECT_FALSE(t.is_boundary(shared));
-  // Use sets: vertex 0 touches 5 faces (3 of each tet, one shared), vertex 3 touches 3.
-  EXPECT_EQ(t.use_set(0).size(), 5u);
-  EXPECT_EQ(t.use_set(3).size(), 3u);
+  // Vertex 0 is on 5 faces (3 of each tet, one shared), vertex 3 on 3.
+  EXPECT_EQ(faces_on(t, 0), 5u);
+  EXPECT_EQ(faces_on(t, 3), 3u);
   const ValidationReport r = validate(m, t);
   // Consistently wound neighbours: both positive.
   EXPECT_EQ(r.positive_tets, 2u);
@@ -51,7 +64,7 @@ TEST(Topology, TwoTetsSharingAFace) {
   EXPECT_TRUE(r.clean());
 }
 
-TEST(Topology, GridCountsAndUseSets) {
+TEST(Topology, GridCountsAndTetFaces) {
   for (uint32_t n : {1u, 2u, 5u}) {
     const TetMesh m = grid(n);
     const Topology t = build_topology(m);
@@ -62,12 +75,14 @@ TEST(Topology, GridCountsAndUseSets) {
     EXPECT_EQ(t.num_boundary_faces, boundary) << n;
     EXPECT_EQ(t.num_faces(), boundary + (20u * n * n * n - boundary) / 2) << n;
     EXPECT_TRUE(t.nonmanifold_faces.empty());
-    // Every face is in exactly its three vertices' use sets.
-    EXPECT_EQ(t.use_faces.size(), 3 * t.num_faces());
-    for (uint32_t v = 0; v < m.num_points(); ++v)
-      for (uint32_t f : t.use_set(v)) {
-        const auto& fv = t.faces[f];
-        EXPECT_TRUE(fv[0] == v || fv[1] == v || fv[2] == v);
+    // Every tet's four faces are faces of the topology, and point back.
+    const auto tf = build_tet_faces(m, t);
+    for (uint32_t ti = 0; ti < m.num_tets(); ++ti)
+      for (uint32_t k = 0; k < 4; ++k) {
+        const uint32_t f = tf[ti][k];
+        ASSERT_LT(f, t.num_faces());
+        EXPECT_EQ(t.face(f), Topology::tet_face(m.tets[ti], k));
+        EXPECT_TRUE(t.tet0(f) == ti || t.tet1(f) == ti);
       }
     const ValidationReport r = validate(m, t);
     EXPECT_TRUE(r.clean()) << n;
