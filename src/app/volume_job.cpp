@@ -2,14 +2,19 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+
+#include <tbb/task_arena.h>
 
 #include "app/scene_jobs.h"
 #include "geometry/tets/topology.h"
 #include "geometry/tets/validate.h"
+#include "base/util/bytes_str.h"
 #include "base/util/memory.h"
 #include "base/view/camera.h"
 #include "render/volume/render_plan.h"
 #include "render/volume/segment_batch.h"
+#include "render/volume/volume_memory.h"
 #include "render/volume/zsweep_renderer.h"
 
 namespace zs {
@@ -19,16 +24,34 @@ namespace {
 class VolumeJob : public SceneJob {
  public:
   explicit VolumeJob(SceneInput& in) : in_(in), rs_(in.scene.settings) {
+    const TetMesh& m = in.mesh;
+    // Refused before anything is built when the mesh cannot fit the budget
+    // (the kernel would otherwise kill the process halfway).
+    const VolumeMemory need = estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars());
+    if (need.peak() > rs_.budget())
+      throw std::runtime_error((in.scene.mesh_path.empty() ? std::string() : in.scene.mesh_path + ": ") +
+                               "memory budget of " + bytes_str(rs_.budget()) + " cannot hold this mesh: " +
+                               std::to_string(m.num_tets()) + " tets need about " + volume_memory_summary(need) +
+                               " (--memory-budget)");
     const auto t0 = std::chrono::steady_clock::now();
-    topo_ = build_topology(in.mesh);
+    // The view-independent state, built once for every frame, on the
+    // render's threads.
+    tbb::task_arena(std::max(1, rs_.threads)).execute([&] {
+      topo_ = build_topology(m);
+      nonfinite_tets_ = count_nonfinite_tets(m);
+    });
     ms_topology_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     grid_ = TileGrid{rs_.width, rs_.height, rs_.tile_size};
-    nonfinite_tets_ = count_nonfinite_tets(in.mesh);
+    // What every frame shares is counted against the budget with the
+    // caller's own bytes.
+    held_ = estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars(), topo_.num_faces());
   }
-  void check_budget(uint64_t extra_bytes) const override { check_memory_budget(in_.mesh, topo_, rs_, extra_bytes); }
+  void check_budget(uint64_t extra_bytes) const override {
+    check_memory_budget(in_.mesh, topo_, rs_, extra_bytes + held_.mesh + held_.topology);
+  }
   std::unique_ptr<TiledRenderer> renderer(uint64_t extra_bytes, bool progress) override {
     rs_.progress = progress;  // the renderer keeps a reference to rs_
-    return std::make_unique<ZSweepRenderer>(in_.mesh, topo_, rs_, extra_bytes);
+    return std::make_unique<ZSweepRenderer>(in_.mesh, topo_, rs_, extra_bytes + held_.mesh + held_.topology);
   }
   double total_ms(const TiledRenderer& r) const override { return of(r).stats().ms_total; }
   nlohmann::json stats(const TiledRenderer& r, const FrameReport& f) const override;
@@ -52,6 +75,7 @@ class VolumeJob : public SceneJob {
   RenderSettings rs_;  // outlives every renderer made from it
   Topology topo_;
   double ms_topology_ = 0;
+  VolumeMemory held_;
   uint64_t nonfinite_tets_ = 0;
 };
 

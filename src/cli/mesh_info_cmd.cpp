@@ -23,6 +23,7 @@
 #include "geometry/tets/validate.h"
 #include "geometry/spheres/sphere_io.h"
 #include "geometry/triangles/io/surface_reader.h"
+#include "render/volume/volume_memory.h"
 
 namespace zs {
 
@@ -47,6 +48,11 @@ struct InfoArgs {
     check_option_scope(given, kind, src.display_name(), false, is_molecule_file(src.path));
   }
 };
+
+// What a volume render of this mesh holds (volume_memory.h).
+VolumeMemory memory_of(const TetMesh& m, const Topology& t) {
+  return estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars(), t.num_faces());
+}
 
 void print_text(const std::string& name, const TetMesh& m, const Topology& t, const ValidationReport& r,
                 double scalar_lo, double scalar_hi, double ms) {
@@ -88,6 +94,7 @@ void print_text(const std::string& name, const TetMesh& m, const Topology& t, co
   for (const std::string& note : m.notes) line("note:", note);
   std::snprintf(buf, sizeof buf, "%.1f ms", ms);
   line("topology + validation:", buf);
+  line("render memory:", volume_memory_summary(memory_of(m, t)) + ", plus fragment pools");
 }
 
 void print_json(const std::string& name, const TetMesh& m, const Topology& t, const ValidationReport& r,
@@ -118,6 +125,9 @@ void print_json(const std::string& name, const TetMesh& m, const Topology& t, co
       {"notes", m.notes},
       {"clean", r.clean()},
   };
+  const VolumeMemory mem = memory_of(m, t);
+  j["render_memory"] = {{"mesh", mem.mesh},         {"topology", mem.topology}, {"topology_build", mem.topology_build},
+                        {"per_view", mem.per_view}, {"peak", mem.peak()},       {"bytes_per_tet", mem.bytes_per_tet()}};
   std::cout << j.dump(2) << "\n";
 }
 

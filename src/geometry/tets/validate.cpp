@@ -5,6 +5,8 @@
 #include <numeric>
 
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 namespace zs {
 
@@ -102,14 +104,19 @@ bool ValidationReport::clean() const {
 }
 
 size_t count_nonfinite_tets(const TetMesh& m) {
-  size_t n = 0;
-  for (const Tet& t : m.tets)
-    for (uint32_t v : t)
-      if (!finite3(m.points[v]) || (m.has_scalars() && !std::isfinite(m.scalars[v]))) {
-        ++n;
-        break;
-      }
-  return n;
+  // One pass over every tet: on the caller's TBB arena.
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, m.tets.size(), 1 << 14), size_t(0),
+      [&](const tbb::blocked_range<size_t>& r, size_t n) {
+        for (size_t t = r.begin(); t < r.end(); ++t)
+          for (uint32_t v : m.tets[t])
+            if (!finite3(m.points[v]) || (m.has_scalars() && !std::isfinite(m.scalars[v]))) {
+              ++n;
+              break;
+            }
+        return n;
+      },
+      std::plus<size_t>());
 }
 
 ValidationReport validate(const TetMesh& m, const Topology& topo, double eps) {
