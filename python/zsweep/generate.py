@@ -47,11 +47,12 @@ def image(path, iso, below=False, size=None, field="image", seed=1, max_points=2
 
 
 def grid(cells, split=5, jitter=0.0, field="gaussians", seed=1):
-    """A box of cubes split into tets, as `zsweep mesh generate grid`: cells is N (N³ cubes) or (NX, NY, NZ).
+    """A box of cubes split into tets, as `zsweep mesh generate grid`.
 
+    cells is N (N³ cubes) or (NX, NY, NZ); the longest axis spans [-1, 1].
     split 5 (alternating by parity) or 6 (around each cube's main diagonal);
     interior nodes move by up to jitter (at most 0.16) cell sizes per axis,
-    the same for the same seed. The longest axis spans [-1, 1]."""
+    the same for the same seed."""
     c = [cells] * 3 if isinstance(cells, numbers.Integral) else list(cells)
     return _zsweep.generate_grid([int(n) for n in c], int(split), float(jitter), field, int(seed))
 

@@ -67,7 +67,8 @@ void add_common(CLI::App* cmd, Common& c, const std::string& default_field) {
   cmd->add_option("--field", c.field, "Scalar field to attach")
       ->check(CLI::IsMember(fields))
       ->capture_default_str();
-  cmd->add_option("--seed", c.seed, "Seed for random choices (blob shape, fields, Mesh_3, grid jitter): same seed, same mesh")
+  cmd->add_option("--seed", c.seed,
+                  "Seed for random choices (blob shape, fields, Mesh_3, grid jitter): same seed, same mesh")
       ->capture_default_str();
 }
 
@@ -249,7 +250,8 @@ void add_image_command(CLI::App* gen) {
 }
 
 void add_grid_command(CLI::App* gen) {
-  CLI::App* cmd = gen->add_subcommand("grid", "Box of NX x NY x NZ cubes, 5 or 6 tets each (no mesher: 100 M tets in seconds)");
+  CLI::App* cmd =
+      gen->add_subcommand("grid", "Box of NX x NY x NZ cubes, 5 or 6 tets each (no mesher: 100 M tets in seconds)");
   auto common = std::make_shared<Common>();
   auto cells = std::make_shared<std::string>();
   auto opt = std::make_shared<GridMeshOptions>();
@@ -267,8 +269,8 @@ void add_grid_command(CLI::App* gen) {
           "N or NX,NY,NZ"));
   add_common(cmd, *common, "gaussians");
   cmd->add_option("--split", opt->split, "Tets per cube: 5 (alternating by parity) or 6 (around the main diagonal)")
-      ->check(CLI::Validator([](std::string& v) { return v == "5" || v == "6" ? "" : "must be 5 or 6, not '" + v + "'"; },
-                             "5 or 6"))
+      ->check(CLI::Validator(
+          [](std::string& v) { return v == "5" || v == "6" ? "" : "must be 5 or 6, not '" + v + "'"; }, "5 or 6"))
       ->capture_default_str();
   char range[32];
   std::snprintf(range, sizeof range, "in [0, %g]", kMaxGridJitter);
@@ -292,7 +294,8 @@ void add_grid_command(CLI::App* gen) {
 }  // namespace
 
 void add_mesh_generate_command(CLI::App& mesh) {
-  CLI::App* gen = mesh.add_subcommand("generate", "Generate a tet mesh (TetGen / CGAL Mesh_3 / hex grid) with a scalar field");
+  CLI::App* gen =
+      mesh.add_subcommand("generate", "Generate a tet mesh (TetGen / CGAL Mesh_3 / hex grid) with a scalar field");
   gen->require_subcommand(1);
   add_shape_commands(gen);
   add_surface_command(gen);
