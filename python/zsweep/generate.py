@@ -5,11 +5,12 @@ Tet meshes come back as {"points": (N, 3), "tets": (M, 4), "scalar": (N,)},
 sphere sets as {"centers": (N, 3), "radii": (N,), "colors": (N, 4)}: each can
 be a scene's "mesh" or "spheres" as it is.
 """
+import numbers
 import os
 
 from . import _zsweep  # loaded by zsweep/__init__.py first
 
-__all__ = ["shape", "surface", "implicit", "image", "spheres", "shapes", "implicit_solids", "fields"]
+__all__ = ["shape", "surface", "implicit", "image", "grid", "spheres", "shapes", "implicit_solids", "fields"]
 
 
 def shape(name, tets=10000, quality=1.414, field="radial", seed=1):
@@ -43,6 +44,17 @@ def image(path, iso, below=False, size=None, field="image", seed=1, max_points=2
     image's value range. Deterministic and bounded as implicit()."""
     return _zsweep.generate_image(os.fspath(path), float(iso), bool(below), None if size is None else float(size), field,
                                   int(seed), int(max_points))
+
+
+def grid(cells, split=5, jitter=0.0, field="gaussians", seed=1):
+    """A box of cubes split into tets, as `zsweep mesh generate grid`.
+
+    cells is N (N³ cubes) or (NX, NY, NZ); the longest axis spans [-1, 1].
+    split 5 (alternating by parity) or 6 (around each cube's main diagonal);
+    interior nodes move by up to jitter (at most 0.16) cell sizes per axis,
+    the same for the same seed."""
+    c = [cells] * 3 if isinstance(cells, numbers.Integral) else list(cells)
+    return _zsweep.generate_grid([int(n) for n in c], int(split), float(jitter), field, int(seed))
 
 
 def spheres(set, count=0, seed=1):

@@ -11,6 +11,7 @@
 #include <pybind11/stl.h>
 
 #include "geometry/tets/generate/cgal_mesher.h"
+#include "geometry/tets/generate/grid_mesh.h"
 #include "geometry/tets/generate/implicit_shapes.h"
 #include "geometry/tets/generate/scalar_fields.h"
 #include "geometry/tets/generate/shape_mesher.h"
@@ -146,6 +147,28 @@ py::dict image(const std::string& path, double iso, bool below, std::optional<do
   }));
 }
 
+// cells: (NX, NY, NZ), from an int or a sequence in generate.py. The
+// generator's own checks (split, jitter, ids, memory) raise ValueError.
+py::dict grid(const std::vector<int64_t>& cells, int split, double jitter, const std::string& field, uint64_t seed) {
+  if (cells.size() != 3) throw py::value_error("cells must be N or (NX, NY, NZ)");
+  GridMeshOptions o;
+  for (int a = 0; a < 3; ++a) {
+    if (cells[a] < 1 || cells[a] > int64_t(UINT32_MAX) - 1)
+      throw py::value_error("cells must be in [1, " + std::to_string(UINT32_MAX - 1) + "], not " +
+                            std::to_string(cells[a]));
+    o.cells[a] = uint32_t(cells[a]);
+  }
+  o.split = split;
+  o.jitter = jitter;
+  o.seed = seed;
+  check_field(field);
+  return mesh_dict(without_gil([&] {
+    TetMesh m = make_grid_mesh(o);
+    if (field != "none") apply_field(m, field, seed);
+    return m;
+  }));
+}
+
 py::dict spheres(const std::string& set, size_t count, uint64_t seed) {
   SphereTestSet t;
   if (!parse_sphere_test_set(set, &t))
@@ -192,6 +215,8 @@ void add_generate(py::module_& m) {
   m.def("generate_image", &image, py::arg("path"), py::arg("iso"), py::arg("below") = false,
         py::arg("size") = py::none(), py::arg("field") = "image", py::arg("seed") = 1,
         py::arg("max_points") = Mesh3Criteria().max_points);
+  m.def("generate_grid", &grid, py::arg("cells"), py::arg("split") = 5, py::arg("jitter") = 0.0,
+        py::arg("field") = "gaussians", py::arg("seed") = 1);
   m.def("generate_spheres", &spheres, py::arg("set"), py::arg("count") = 0, py::arg("seed") = 1);
   m.def("shapes", [] {
     std::vector<std::string> v;

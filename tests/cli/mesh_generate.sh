@@ -3,7 +3,8 @@
 # one line (an iso-value outside the image's values, sizes that need more
 # points than --max-points, a --max-volume that needs more than --max-tets),
 # the same input and seed give the same bytes, and --tets is met within 10 %
-# and reported against the target.
+# and reported against the target. `grid`: its counts, a clean mesh, one-line
+# errors for --cells and sizes over the ids or memory.
 set -u
 zsweep=$1; src=$2
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -103,6 +104,35 @@ done
 "$zsweep" mesh generate post --tets 100 -o "$tmp/s.off" >"$tmp/out" 2>"$tmp/err"
 ok grep -q "(post, target 100, +[0-9.]* %, field radial" "$tmp/out"
 ok grep -q "^zsweep: warning: post: [0-9]* tets, +[0-9]* % over --tets 100: the shape needs about that many at --quality 1.414$" "$tmp/err"
+
+# grid: counts in the summary, generation and write timed apart, a clean mesh.
+"$zsweep" mesh generate grid --cells 4,3,2 --split 6 --jitter 0.16 --seed 3 -o "$tmp/g1.vtu" >"$tmp/out" 2>"$tmp/err"
+ok grep -q "^$tmp/g1.vtu: 60 points, 144 tets (grid 4x3x2, 6 tets per cube, jitter 0.16, field gaussians, generated in [0-9.]* s, written in [0-9.]* s)$" "$tmp/out"
+ok test ! -s "$tmp/err"
+"$zsweep" mesh info "$tmp/g1.vtu" >"$tmp/info"
+ok grep -q "^orientation: *144 positive, 0 negative$" "$tmp/info"
+ok grep -q "^status: *clean$" "$tmp/info"
+ok grep -q "^volume: *3$" "$tmp/info"
+"$zsweep" mesh generate grid --cells 4,3,2 --split 6 --jitter 0.16 --seed 3 -o "$tmp/g2.vtu" >/dev/null
+ok cmp -s "$tmp/g1.vtu" "$tmp/g2.vtu"
+"$zsweep" mesh generate grid --cells 5 --field none -o "$tmp/g.off" >"$tmp/out"
+ok grep -q ": 216 points, 625 tets (grid 5x5x5, 5 tets per cube, generated in" "$tmp/out"
+for bad in "2x:'2x' is not a number" "1,2:'1,2' has 2 numbers: expected N or NX,NY,NZ" \
+           "0:0 is out of range: must be in [1, 4294967294]" "2.5:'2.5' is not a whole number"; do
+  fails_with 2 "zsweep: error: --cells: ${bad#*:} (see --help)" "$zsweep" mesh generate grid --cells "${bad%%:*}" -o "$tmp/x.off"
+done
+fails_with 2 "zsweep: error: --split: must be 5 or 6, not '4' (see --help)" \
+  "$zsweep" mesh generate grid --cells 2 --split 4 -o "$tmp/x.off"
+fails_with 2 "zsweep: error: --jitter: 0.25 is out of range: must be in [0, 0.16] (see --help)" \
+  "$zsweep" mesh generate grid --cells 2 --jitter 0.25 -o "$tmp/x.off"
+fails_with 1 "zsweep: error: grid 2000x2000x2000 cells: 8012006001 points, over the 4294967295 that 32-bit point ids allow; use fewer cells" \
+  "$zsweep" mesh generate grid --cells 2000 -o "$tmp/x.off"
+fails_with 1 "zsweep: error: grid 1x1x1000000000 cells: 6000000000 tets, over the 4294967295 that 32-bit tet ids allow; use fewer cells" \
+  "$zsweep" mesh generate grid --cells 1,1,1000000000 --split 6 -o "$tmp/x.off"
+# Ids that fit but memory that does not (157 GB: over half of any machine this runs on).
+timeout 60 "$zsweep" mesh generate grid --cells 1,1,700000000 --split 6 -o "$tmp/x.off" >"$tmp/out" 2>"$tmp/err"
+ok test $? -eq 1 -a ! -s "$tmp/out" -a ! -e "$tmp/x.off"
+ok grep -qx "zsweep: error: grid 1x1x700000000 cells: 2800000004 points and 4200000000 tets take 149536.1 MiB, over the memory budget of [0-9.]* MiB (half of physical memory); use fewer cells" "$tmp/err"
 
 echo "mesh_generate: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

@@ -13,6 +13,15 @@ def cli_json(*args):
     return json.loads(subprocess.run([ZSWEEP, *map(str, args)], check=True, capture_output=True, text=True).stdout)
 
 
+def read_off(path):
+    """(points with the scalar as column 4, tets) of an OFF tet mesh the CLI wrote."""
+    lines = [l for l in path.read_text().split("\n") if l.strip() and not l.startswith("#")]
+    n, m = int(lines[0]), int(lines[1])
+    pts = np.array([[float(x) for x in l.split()] for l in lines[2:2 + n]])
+    tets = np.array([[int(x) for x in l.split()] for l in lines[2 + n:2 + n + m]])
+    return pts, tets
+
+
 def test_generated_mesh_renders_and_matches_its_reference():
     m = zsweep.generate.shape("sphere", tets=1500, field="radial")
     assert m["points"].shape[1] == 3 and m["tets"].shape[1] == 4 and m["scalar"].shape == (len(m["points"]),)
@@ -86,10 +95,7 @@ def test_generate_image_is_deterministic_and_matches_the_cli(tmp_path):
     out = tmp_path / "img.off"
     subprocess.run([ZSWEEP, "mesh", "generate", "image", src, "--iso", "2", "--below", "--size", "0.2", "-o", out],
                    check=True, stdout=subprocess.DEVNULL)
-    lines = [l for l in out.read_text().split("\n") if l.strip() and not l.startswith("#")]
-    n, m = int(lines[0]), int(lines[1])
-    pts = np.array([[float(x) for x in l.split()] for l in lines[2:2 + n]])
-    tets = np.array([[int(x) for x in l.split()] for l in lines[2 + n:2 + n + m]])
+    pts, tets = read_off(out)
     assert np.array_equal(pts[:, :3], a["points"]) and np.array_equal(pts[:, 3], a["scalar"])
     assert np.array_equal(tets, a["tets"])
     with pytest.raises(RuntimeError, match=r"no voxel is above iso 1000 \(the image's values are 0.433013 to 4.76314\)"):
@@ -98,3 +104,31 @@ def test_generate_image_is_deterministic_and_matches_the_cli(tmp_path):
         zsweep.generate.image(src, 2.0, below=True, size=0.05, max_points=100)
     with pytest.raises(ValueError, match="max_volume must be 0"):
         zsweep.generate.surface(src, max_volume=-1)
+
+
+def test_generate_grid_matches_the_cli(tmp_path):
+    a = zsweep.generate.grid((4, 3, 2), split=6, jitter=0.16, seed=3)
+    assert a["points"].shape == (5 * 4 * 3, 3) and a["tets"].shape == (6 * 24, 4)
+    assert a["points"][:, 0].min() == -1 and a["points"][:, 0].max() == 1  # the longest axis spans [-1, 1]
+    plain = zsweep.generate.grid(4, field="none")
+    assert plain["tets"].shape == (5 * 64, 4) and "scalar" not in plain
+    out = tmp_path / "g.off"
+    subprocess.run([ZSWEEP, "mesh", "generate", "grid", "--cells", "4,3,2", "--split", "6", "--jitter", "0.16",
+                    "--seed", "3", "-o", out], check=True, stdout=subprocess.DEVNULL)
+    pts, tets = read_off(out)
+    assert np.array_equal(pts[:, :3], a["points"]) and np.array_equal(pts[:, 3], a["scalar"])
+    assert np.array_equal(tets, a["tets"])
+    p = a["points"][a["tets"]]
+    assert (np.linalg.det(p[:, 1:] - p[:, :1]) > 0).all()  # every tet positive
+    img, st = zsweep.render_stats({"mesh": a}, width=32, height=32)
+    assert st["mesh"]["tets"] == 144
+    with pytest.raises(ValueError, match=r"jitter must be in \[0, 0.16\], not 0.25"):
+        zsweep.generate.grid(2, jitter=0.25)
+    with pytest.raises(ValueError, match="split must be 5 or 6, not 4"):
+        zsweep.generate.grid(2, split=4)
+    with pytest.raises(ValueError, match=r"cells must be in \[1, 4294967294\], not 0"):
+        zsweep.generate.grid((2, 0, 2))
+    with pytest.raises(ValueError, match="cells must be N or"):
+        zsweep.generate.grid((2, 2))
+    with pytest.raises(ValueError, match="over the 4294967295 that 32-bit point ids allow"):
+        zsweep.generate.grid(2000)

@@ -6,13 +6,20 @@
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace zs {
 
+// Each point's value on its own, so the parallel loop gives the serial
+// loop's doubles bit for bit (the build never contracts to FMA) at 100 M
+// points in a second or two (issue 41).
 template <class F>
 static void fill(TetMesh& m, const char* name, F&& f) {
   m.scalars.resize(m.points.size());
-  for (size_t i = 0; i < m.points.size(); ++i) m.scalars[i] = f(m.points[i]);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, m.points.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i < r.end(); ++i) m.scalars[i] = f(m.points[i]);
+  });
   m.scalar_name = name;
 }
 
