@@ -36,10 +36,8 @@ class VolumeJob : public SceneJob {
     const auto t0 = std::chrono::steady_clock::now();
     // The view-independent state, built once for every frame, on the
     // render's threads.
-    tbb::task_arena(std::max(1, rs_.threads)).execute([&] {
-      topo_ = build_topology(m);
-      nonfinite_tets_ = count_nonfinite_tets(m);
-    });
+    tbb::task_arena(std::max(1, rs_.threads)).execute([&] { topo_ = build_topology(m); });
+    nonfinite_tets_ = topo_.num_nonfinite_tets;
     ms_topology_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     grid_ = TileGrid{rs_.width, rs_.height, rs_.tile_size};
     // What every frame shares is counted against the budget with the

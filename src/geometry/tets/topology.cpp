@@ -127,7 +127,9 @@ Topology build_topology(const TetMesh& m) {
   std::vector<uint32_t>().swap(recs);
 
   topo.tet_degenerate.resize(nt);
+  tbb::combinable<size_t> nonfinite;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+    size_t n = 0;
     for (size_t t = r.begin(); t < r.end(); ++t) {
       const Tet& tet = tets[t];
       double l2 = 0;
@@ -143,8 +145,11 @@ Topology build_topology(const TetMesh& m) {
       }
       // Same relative criterion as validation (validate.h).
       topo.tet_degenerate[t] = !finite || !(std::abs(signed_volume6(m, tet)) > 1e-10 * l2 * std::sqrt(l2));
+      n += !finite;
     }
+    nonfinite.local() += n;
   });
+  topo.num_nonfinite_tets = nonfinite.combine(std::plus<size_t>());
   return topo;
 }
 

@@ -43,6 +43,7 @@ struct Topology {
   // function: zero volume by validation's relative criterion, or a
   // non-finite point or scalar (render/volume/face_classes.h).
   std::vector<uint8_t> tet_degenerate;
+  size_t num_nonfinite_tets = 0;  // of those, the ones with a non-finite point or scalar
   // The mesh's tets the faces point into: the topology is valid while they
   // live and are unchanged (rebuild it if the points, scalars or tets change).
   std::span<const Tet> tets;

@@ -88,7 +88,12 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
   // counting sort by that rank (filled in any order, then each rank's short
   // run sorted by id), dropping faces that cannot produce a fragment.
   const uint32_t nf = uint32_t(topo.num_faces());
-  std::vector<uint32_t> key(nf, kDropped);
+  // Per face: its rank (kDropped: left out) and its single tile, found here
+  // once rather than again in the scattered fill below.
+  struct FaceKey {
+    uint32_t rank = kDropped, tile = 0;
+  };
+  std::vector<FaceKey> key(nf);
   std::vector<uint32_t> start(size_t(n_events) + 1, 0);
   tbb::combinable<Dropped> dropped;
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nf, kGrain), [&](const tbb::blocked_range<uint32_t>& r) {
@@ -104,7 +109,7 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
         d.add(c);
         continue;
       }
-      key[f] = rk;
+      key[f] = {rk, single_tile(item_tile_box(v, tiling), tiling)};
       std::atomic_ref<uint32_t>(start[rk + 1]).fetch_add(1, std::memory_order_relaxed);
     }
   });
@@ -118,20 +123,17 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
   const size_t base = it.size(), total = base + start[n_events];
   it.items.resize(total);
   {
-    // Faces in id order here (their vertices are near in memory): each
-    // item's single tile is found now, not in the bins' sweep-ordered passes.
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nf, kGrain), [&](const tbb::blocked_range<uint32_t>& r) {
       for (uint32_t f = r.begin(); f < r.end(); ++f) {
-        if (key[f] == kDropped) continue;
-        const auto fv = topo.face(f);
-        const ScreenVertex v[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
-        const size_t k = base + std::atomic_ref<uint32_t>(fill[key[f]]).fetch_add(1, std::memory_order_relaxed);
-        it.items[k] = {f, z_at[key[f]], single_tile(item_tile_box(v, tiling), tiling)};
+        const FaceKey fk = key[f];
+        if (fk.rank == kDropped) continue;
+        const size_t k = base + std::atomic_ref<uint32_t>(fill[fk.rank]).fetch_add(1, std::memory_order_relaxed);
+        it.items[k] = {f, z_at[fk.rank], fk.tile};
       }
     });
   }
-  std::vector<uint32_t>().swap(key);
+  std::vector<FaceKey>().swap(key);
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_events, kGrain / 4), [&](const tbb::blocked_range<uint32_t>& r) {
     for (uint32_t rk = r.begin(); rk < r.end(); ++rk) {
       SweepItem* lo = it.items.data() + base + start[rk];

@@ -62,27 +62,58 @@ class TileSweep {
     return ws.px.data();
   }
 
+  // Copies the next n items of the bin, with their vertices, into the
+  // thread's staging buffer. A face's vertices are dependent reads away from
+  // its bin entry (item, face, tet, vertices), each a cache miss on a large
+  // mesh; in this short loop of loads the misses of many items overlap,
+  // where in the sweep each would stall the scan of its face.
+  void stage(uint64_t b0, size_t n) {
+    const Topology& topo = in_.topo;
+    StagedItem* st = ws_.staged.data();
+    for (size_t i = 0; i < n; ++i) {
+      const SweepItem& item = in_.items[in_.bins.items[b0 + i]];
+      st[i].id = item.id;
+      st[i].z_sweep = item.z_sweep;
+      if (!(item.id & kNearItem)) {
+        const auto fv = topo.face(item.id);
+        for (int c = 0; c < 3; ++c) st[i].vid[c] = fv[c];
+      }
+    }
+    for (size_t i = 0; i < n; ++i) {
+      StagedItem& it = st[i];
+      if (it.id & kNearItem) {
+        const NearTriangle& nt = in_.near[it.id & ~kNearItem];
+        for (int c = 0; c < 3; ++c) it.tri[c] = nt.v[c];
+        it.cls = nt.cls;
+      } else {
+        for (int c = 0; c < 3; ++c) it.tri[c] = in_.sv[it.vid[c]];
+        it.cls = in_.cls[it.id];
+      }
+    }
+  }
+
   void run(uint32_t tile) {
     const auto& bins = in_.bins;
     float z_target = -INFINITY;
-    for (uint64_t b = bins.offset[tile]; b < bins.offset[tile + 1]; ++b) {
-      const uint32_t k = bins.items[b];
-      const float z_sweep = in_.items[k].z_sweep;
-      if (z_sweep > z_target) {
-        // The sweep passed z_target: every face still to come starts at or
-        // after z_sweep, so every fragment before it is final. Composite them
-        // all and aim at the farthest vertex of the faces now being projected.
-        if (!ws_.active.empty()) {
-          ++S_.composite_events;
-          composite_all(z_sweep);
+    const uint64_t b_end = bins.offset[tile + 1];
+    for (uint64_t b0 = bins.offset[tile]; b0 < b_end; b0 += kStage) {
+      const size_t n = size_t(std::min<uint64_t>(kStage, b_end - b0));
+      stage(b0, n);
+      for (size_t i = 0; i < n; ++i) {
+        const StagedItem& it = ws_.staged[i];
+        if (it.z_sweep > z_target) {
+          // The sweep passed z_target: every face still to come starts at or
+          // after z_sweep, so every fragment before it is final. Composite them
+          // all and aim at the farthest vertex of the faces now being projected.
+          if (!ws_.active.empty()) {
+            ++S_.composite_events;
+            composite_all(it.z_sweep);
+          }
+          z_target = it.z_sweep;
         }
-        z_target = z_sweep;
+        z_target = std::max(z_target, item_z_max(it.tri, in_.z_origin));
+        project(it.tri, it.cls, it.z_sweep);
       }
-      ScreenVertex tri[3];
-      item_triangle(in_.items, k, in_.topo, in_.sv, in_.near, tri);
-      z_target = std::max(z_target, item_z_max(tri, in_.z_origin));
-      const uint32_t id = in_.items[k].id;
-      project(tri, (id & kNearItem) ? in_.near[id & ~kNearItem].cls : in_.cls[id], z_sweep);
     }
     composite_all(INFINITY);
     comp_.flush();

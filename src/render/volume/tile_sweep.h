@@ -40,6 +40,16 @@ struct SweepShared {
   double z_origin = 0;  // fragments store depth - z_origin
 };
 
+// A bin entry staged for the sweep: its item with its screen triangle.
+struct StagedItem {
+  ScreenVertex tri[3];
+  uint32_t vid[3];
+  uint32_t id;
+  float z_sweep;
+  FaceClass cls;
+};
+constexpr size_t kStage = 1024;  // bin entries staged at once (~150 KB a thread)
+
 // Per-thread scratch, reused from tile to tile.
 // Aligned to its own cache lines: two threads' workspaces never share one.
 struct alignas(128) TileWorkspace {
@@ -55,6 +65,7 @@ struct alignas(128) TileWorkspace {
   FaceFragments frags;  // the benchmarks' timed path only
   std::unique_ptr<TriangleScanner> scanner;  // the render's scan strategy, with its scratch
   std::vector<float> out;  // the finished tile, RGBA
+  std::vector<StagedItem> staged = std::vector<StagedItem>(kStage);
   std::unique_ptr<SegmentBatch> batch;  // exact integrator without early termination
 };
 

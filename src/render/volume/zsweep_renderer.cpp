@@ -65,13 +65,13 @@ constexpr uint64_t kMinPoolFragments = 256;
 
 uint64_t zsweep_shared_bytes(size_t num_points, size_t num_faces) {
   // Per vertex: view position and, while the order is built, its event and
-  // sort key (then its rank, plane depth and run starts). Per face: class
-  // and sweep item; the order's per-face key is freed before the bins are
-  // made, and check_memory_budget counts those at 4 bytes per face. The
+  // sort key (then its rank, plane depth and run starts). Per face: class,
+  // sweep item and the order's 8-byte key, freed before the bins are made
+  // (half of it here, half as check_memory_budget's 4 bytes a face). The
   // near-plane clip's flags (a byte per face and per tet) are not counted:
   // only views with vertices behind the eye need them.
   const uint64_t per_point = sizeof(ScreenVertex) + sizeof(SweepEvent) + sizeof(SweepKey) + 8;
-  return num_points * per_point + num_faces * (1 + sizeof(SweepItem));
+  return num_points * per_point + num_faces * (1 + sizeof(SweepItem) + 4);
 }
 
 RenderPlan plan_render(uint64_t budget, uint64_t shared, uint64_t tile_pixels, int threads) {

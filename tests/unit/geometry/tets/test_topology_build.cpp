@@ -4,6 +4,7 @@
 // on meshes with repeated indices, flat and non-manifold tets, and on any
 // thread count.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <random>
@@ -14,6 +15,7 @@
 
 #include "geometry/tets/hex_split.h"
 #include "geometry/tets/topology.h"
+#include "geometry/tets/validate.h"
 
 namespace zs {
 namespace {
@@ -49,6 +51,7 @@ void expect_same(const TetMesh& m, const Topology& t, const char* what) {
   EXPECT_EQ(t.num_boundary_faces, boundary) << what;
   EXPECT_EQ(t.nonmanifold_faces, nonmanifold) << what;
   ASSERT_EQ(t.tet_degenerate.size(), m.num_tets()) << what;
+  EXPECT_EQ(t.num_nonfinite_tets, count_nonfinite_tets(m)) << what;
 }
 
 TetMesh grid_mesh(uint32_t n) {
@@ -119,6 +122,9 @@ TEST(TopologyBuild, RepeatedIndicesFlatAndNonManifoldTets) {
   std::mt19937 rng(7);
   TetMesh m;
   for (int i = 0; i < 40; ++i) m.points.push_back({double(rng() % 5), double(rng() % 5), double(rng() % 5)});
+  m.scalars.assign(40, 1.0);
+  m.points[3].y = INFINITY;  // non-finite tets, counted
+  m.scalars[5] = NAN;
   // Random tets over few points: many shared, repeated and non-manifold faces.
   for (int i = 0; i < 3000; ++i)
     m.tets.push_back({uint32_t(rng() % 40), uint32_t(rng() % 40), uint32_t(rng() % 40), uint32_t(rng() % 40)});
@@ -126,6 +132,7 @@ TEST(TopologyBuild, RepeatedIndicesFlatAndNonManifoldTets) {
     const Topology t = build_on(m, threads);
     expect_same(m, t, "random");
     EXPECT_FALSE(t.nonmanifold_faces.empty());
+    EXPECT_GT(t.num_nonfinite_tets, 0u);
   }
 }
 

@@ -178,7 +178,7 @@ TEST(GridMesh, ConformingWithTheBoxAsBoundary) {
         for (int a = 0; a < 3; ++a)
           for (double side : {b.lo[a], b.hi[a]}) {
             bool all = true;
-            for (uint32_t v : t.faces[f]) all = all && m.points[v][a] == side;
+            for (uint32_t v : t.face(f)) all = all && m.points[v][a] == side;
             on = on || all;
           }
         off_box += !on;
