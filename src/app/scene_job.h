@@ -53,6 +53,10 @@ class SceneJob {
   // other channels out of the frames (surfaces: Z and lit, whose stores are a
   // good part of a frame); the others' writers drop them.
   virtual void keep_rgba_only() {}
+  // Points the next frames' camera at `camera`, keeping what does not depend
+  // on the view (a volume's topology); false when this job cannot, and the
+  // caller makes a new job for the new camera instead.
+  virtual bool set_camera(const Camera&) { return false; }
   // Whether render_frames makes the next frame's renderer before it frees
   // the previous one (more memory for a moment; the allocator then hands the
   // same pages back instead of faulting fresh ones in).

@@ -44,6 +44,10 @@ class VolumeJob : public SceneJob {
     // caller's own bytes.
     held_ = estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars(), topo_.num_faces());
   }
+  bool set_camera(const Camera& camera) override {
+    rs_.camera = camera;
+    return true;
+  }
   void check_budget(uint64_t extra_bytes) const override {
     check_memory_budget(in_.mesh, topo_, rs_, extra_bytes + held_.mesh + held_.topology);
   }

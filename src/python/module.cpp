@@ -27,6 +27,7 @@
 #include "output/image_compare.h"
 #include "python/py_data.h"
 #include "python/py_generate.h"
+#include "scene/scene.h"
 
 namespace py = pybind11;
 
@@ -190,6 +191,8 @@ std::vector<std::string> names_of(const SceneJob& job) {
   return names;
 }
 
+py::tuple render_job(SceneJob& job, const Options& o);
+
 // A loaded scene rendered through its SceneJob into a new array.
 py::tuple render_input(SceneInput& in, const Options& o) {
   std::unique_ptr<SceneJob> job;
@@ -198,6 +201,12 @@ py::tuple render_input(SceneInput& in, const Options& o) {
     job = make_scene_job(in, o.no_culling);
     job->check_budget(0);
   });
+  return render_job(*job, o);
+}
+
+// One render of a job's frames into a new array.
+py::tuple render_job(SceneJob& job_ref, const Options& o) {
+  SceneJob* job = &job_ref;
   const TileGrid g = job->grid();
   py::array_t<float> img({size_t(g.height), size_t(g.width), size_t(g.channels)});
   float* px = img.mutable_data();
@@ -226,6 +235,44 @@ py::tuple render(const std::string& text, const std::string& name, const std::st
   std::unique_ptr<SceneInput> in = load(text, name, base_dir, data, o);
   return render_input(*in, o);
 }
+
+// A scene loaded once and rendered many times (zsweep.Renderer): the mesh
+// and what its renderer keeps between views (a volume's topology) are built
+// once; a new camera replaces the scene's for the following renders.
+class Session {
+ public:
+  Session(const std::string& text, const std::string& name, const std::string& base_dir, const py::dict& data,
+          const py::dict& options)
+      : o_(options_from(options)), in_(load(text, name, base_dir, data, o_)) {
+    run_cancellable([&](const std::atomic<bool>&) {
+      in_->scene.settings.face_area_stats = true;  // the stats are always returned
+      job_ = make_scene_job(*in_, o_.no_culling);
+      job_->check_budget(0);
+    });
+  }
+
+  // render(camera_json) -> (image, channel names, stats JSON); "" keeps the camera.
+  py::tuple render(const std::string& camera_json) {
+    if (!camera_json.empty()) {
+      Camera cam = in_->scene.settings.camera;
+      parse_camera_json(camera_json, "camera", &cam);
+      run_cancellable([&](const std::atomic<bool>&) {
+        in_->scene.settings.camera = cam;
+        if (!job_->set_camera(cam)) {
+          job_.reset();
+          job_ = make_scene_job(*in_, o_.no_culling);
+          job_->check_budget(0);
+        }
+      });
+    }
+    return render_job(*job_, o_);
+  }
+
+ private:
+  Options o_;
+  std::unique_ptr<SceneInput> in_;
+  std::unique_ptr<SceneJob> job_;
+};
 
 // reference(...) -> the same triple, from the independent ray casters
 // (surface scenes: the renderer's exact mode). Not interruptible inside.
@@ -291,6 +338,10 @@ PYBIND11_MODULE(_zsweep, m) {
   m.def("reference", &zs::python::reference, py::arg("scene_json"), py::arg("name"), py::arg("base_dir"),
         py::arg("data"), py::arg("options"), py::arg("ao_samples"));
   m.def("write_image", &zs::python::write, py::arg("path"), py::arg("image"));
+  py::class_<zs::python::Session>(m, "Session")
+      .def(py::init<const std::string&, const std::string&, const std::string&, const py::dict&, const py::dict&>(),
+           py::arg("scene_json"), py::arg("name"), py::arg("base_dir"), py::arg("data"), py::arg("options"))
+      .def("render", &zs::python::Session::render, py::arg("camera_json"));
   m.def("compare", &zs::python::compare, py::arg("a"), py::arg("b"), py::arg("rgb") = false);
   zs::python::add_generate(m);
   // An option that does not apply to the input, or a bad option value.

@@ -224,6 +224,45 @@ void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
 
 }  // namespace
 
+namespace {
+
+// A "camera" object over `k`: the keys it names replace k's, then the whole
+// camera is checked.
+void parse_camera(const Ctx& c, const json& cam, Camera* camera) {
+  check_keys(c, cam, "camera", {"projection", "eye", "target", "up", "height", "fov_y"});
+  Camera& k = *camera;
+  if (cam.contains("projection")) {
+    const std::string p = cam["projection"].is_string() ? cam["projection"].get<std::string>() : "";
+    if (p == "orthographic") k.projection = Projection::Orthographic;
+    else if (p == "perspective") k.projection = Projection::Perspective;
+    else c.fail("camera.projection must be \"orthographic\" or \"perspective\"");
+  }
+  if (cam.contains("eye")) k.eye = vec3(c, cam["eye"], "camera.eye");
+  if (cam.contains("target")) k.target = vec3(c, cam["target"], "camera.target");
+  if (cam.contains("up")) k.up = vec3(c, cam["up"], "camera.up");
+  if (cam.contains("height")) k.height = num(c, cam["height"], "camera.height");
+  if (cam.contains("fov_y")) k.fov_y = num(c, cam["fov_y"], "camera.fov_y");
+  const glm::dvec3 f = k.target - k.eye;
+  if (glm::length(f) == 0) c.fail("camera.eye and camera.target must differ");
+  if (glm::length(glm::cross(f, k.up)) <= 1e-12 * glm::length(f) * glm::length(k.up))
+    c.fail("camera.up must not be parallel to the view direction");
+  if (!(k.height > 0)) c.fail("camera.height must be positive");
+  if (!(k.fov_y > 0 && k.fov_y < 180)) c.fail("camera.fov_y must be in (0, 180) degrees");
+}
+
+}  // namespace
+
+void parse_camera_json(const std::string& text, const std::string& name, Camera* camera) {
+  const Ctx c{name, ""};
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    c.fail(std::string("invalid JSON: ") + e.what());
+  }
+  parse_camera(c, j, camera);
+}
+
 Scene parse_scene(const std::string& text, const std::string& name, const std::string& base_dir) {
   const Ctx c{name, base_dir};
   json j;
@@ -294,27 +333,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   }
 
   if (j.contains("camera")) {
-    const json& cam = j["camera"];
-    check_keys(c, cam, "camera", {"projection", "eye", "target", "up", "height", "fov_y"});
     s.has_camera = true;
-    Camera& k = rs.camera;
-    if (cam.contains("projection")) {
-      const std::string p = cam["projection"].is_string() ? cam["projection"].get<std::string>() : "";
-      if (p == "orthographic") k.projection = Projection::Orthographic;
-      else if (p == "perspective") k.projection = Projection::Perspective;
-      else c.fail("camera.projection must be \"orthographic\" or \"perspective\"");
-    }
-    if (cam.contains("eye")) k.eye = vec3(c, cam["eye"], "camera.eye");
-    if (cam.contains("target")) k.target = vec3(c, cam["target"], "camera.target");
-    if (cam.contains("up")) k.up = vec3(c, cam["up"], "camera.up");
-    if (cam.contains("height")) k.height = num(c, cam["height"], "camera.height");
-    if (cam.contains("fov_y")) k.fov_y = num(c, cam["fov_y"], "camera.fov_y");
-    const glm::dvec3 f = k.target - k.eye;
-    if (glm::length(f) == 0) c.fail("camera.eye and camera.target must differ");
-    if (glm::length(glm::cross(f, k.up)) <= 1e-12 * glm::length(f) * glm::length(k.up))
-      c.fail("camera.up must not be parallel to the view direction");
-    if (!(k.height > 0)) c.fail("camera.height must be positive");
-    if (!(k.fov_y > 0 && k.fov_y < 180)) c.fail("camera.fov_y must be in (0, 180) degrees");
+    parse_camera(c, j["camera"], &rs.camera);
   }
 
   if (j.contains("transfer_function")) {

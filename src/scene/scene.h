@@ -55,6 +55,9 @@ struct Scene {
 // errors (with line) and invalid or unknown keys.
 Scene load_scene(const std::string& path);
 Scene parse_scene(const std::string& json_text, const std::string& name, const std::string& base_dir);
+// A scene's "camera" object as JSON text, over `camera`: the keys it names
+// replace camera's, then it is checked as a scene's is; errors name `name`.
+void parse_camera_json(const std::string& json_text, const std::string& name, Camera* camera);
 
 
 }  // namespace zs
