@@ -129,51 +129,46 @@ uint64_t bytes_for(uint64_t count, uint64_t width, const std::string& what, uint
   return bytes;
 }
 
-// Every section where the counts say, inside the file, aligned, apart from
-// the header and each other, and nothing after the last one.
+uint64_t align_up(uint64_t at) { return (at + kAlign - 1) / kAlign * kAlign; }
+
+// The sections in their order, each of exactly the size its count implies
+// and at the first multiple of 64 after the one before (the header for the
+// first), inside the file, and nothing after the last one: every byte of a
+// file has one place, so every byte is checked (checksums, zero padding).
 void check_layout(const Header& h, uint64_t total, const std::string& name) {
   uint64_t want[kNumSec];
   want[kPoints] = bytes_for(h.points, 24, "points", total, name);
   want[kScalars] = h.flags & kFlagScalars ? h.points * 8 : 0;
   want[kTets] = bytes_for(h.tets, 16, "tets", total, name);
-  const uint64_t strings_min =
-      bytes_for(h.notes, 8, "notes", total, name) + 16;  // a length per string; no overflow: <= total + 16
-  if (strings_min > total)
-    throw FileError(name, "truncated: the strings section needs at least " + num(strings_min) + " bytes, the file has " +
-                              num(total));
+  want[kStrings] = bytes_for(h.notes, 8, "notes", total, name) + 16;  // a length per string, at least
+  uint64_t at = kZsmHeaderBytes;  // <= total throughout
   for (int s = 0; s < kNumSec; ++s) {
     const Section& c = h.sec[s];
     const std::string what = std::string("the ") + kSecName[s] + " section";
     if (s != kStrings && c.size != want[s])
-      throw FileError(name, what + " is " + num(c.size) + " bytes, " + (s == kTets ? num(h.tets) + " tets" :
-                            num(h.points) + " points") + " need " + num(want[s]));
-    if (s == kStrings && c.size < strings_min)
+      throw FileError(name, what + " is " + num(c.size) + " bytes, " +
+                                (s == kTets ? num(h.tets) + " tets" : num(h.points) + " points") + " need " + num(want[s]));
+    if (s == kStrings && c.size < want[s])
       throw FileError(name, what + " is " + num(c.size) + " bytes, too short for " + num(h.notes + 2) + " strings");
-    if (c.offset % kAlign != 0)
-      throw FileError(name, what + " starts at byte " + num(c.offset) + ", not a multiple of " + num(kAlign));
-    if (c.offset < kZsmHeaderBytes)
-      throw FileError(name, what + " starts at byte " + num(c.offset) + ", inside the " + num(kZsmHeaderBytes) +
-                                "-byte header");
+    if (c.offset != align_up(at))
+      throw FileError(name, what + " starts at byte " + num(c.offset) + " (expected " + num(align_up(at)) + ")");
     if (c.offset > total || c.size > total - c.offset)
       throw FileError(name, "truncated: " + what + " needs " + num(c.size) + " bytes from byte " + num(c.offset) +
                                 ", the file has " + num(total));
+    at = c.end();
   }
-  int order[kNumSec] = {kPoints, kScalars, kTets, kStrings};
-  std::sort(order, order + kNumSec, [&](int a, int b) { return h.sec[a].offset < h.sec[b].offset; });
-  int last = -1;  // the non-empty section ending last so far
-  for (int s : order) {
-    if (h.sec[s].size == 0) continue;
-    if (last >= 0 && h.sec[s].offset < h.sec[last].end())
-      throw FileError(name, std::string("the ") + kSecName[s] + " section overlaps the " + kSecName[last] + " section");
-    last = s;
-  }
-  const uint64_t end = std::max<uint64_t>(kZsmHeaderBytes, h.sec[last].end());  // strings are never empty
-  if (total != end) throw FileError(name, num(total - end) + " bytes after the last section, which ends at byte " + num(end));
+  if (total != at) throw FileError(name, num(total - at) + " bytes after the last section, which ends at byte " + num(at));
 }
 
-// Reads section s into dst, hashing each block as it arrives.
+// Reads section s into dst, hashing each block as it arrives, and the
+// padding before it, which must be zero.
 void read_section(const ReadAt& read_at, const Header& h, int s, char* dst, const std::string& name) {
   const Section& c = h.sec[s];
+  const uint64_t before = s == 0 ? kZsmHeaderBytes : h.sec[s - 1].end();
+  char pad[kAlign] = {};
+  read_at(before, pad, size_t(c.offset - before));  // < 64 bytes (check_layout)
+  for (uint64_t i = 0; i < c.offset - before; ++i)
+    if (pad[i] != 0) throw FileError(name, std::string("the padding before the ") + kSecName[s] + " section is not zero");
   Checksum64 sum;
   for (uint64_t done = 0; done < c.size;) {
     const size_t n = size_t(std::min<uint64_t>(c.size - done, kBlock));
@@ -307,7 +302,7 @@ void write_zsm(const std::string& path, const TetMesh& m) {
   const uint64_t size[kNumSec] = {24 * h.points, 8 * m.scalars.size(), 16 * h.tets, strings.size()};
   uint64_t at = kZsmHeaderBytes;
   for (int s = 0; s < kNumSec; ++s) {
-    at = (at + kAlign - 1) / kAlign * kAlign;
+    at = align_up(at);
     h.sec[s].offset = at;
     h.sec[s].size = size[s];
     at += size[s];
