@@ -17,7 +17,8 @@ void add_mesh_convert_command(CLI::App& mesh) {
   auto args = std::make_shared<Args>();
   CLI::App* cmd = mesh.add_subcommand("convert", "Convert a mesh between formats (.off, .zsm, .vtu, .node/.ele)");
   args->src.add_options(*cmd, true);
-  cmd->add_option("output", args->out, "Output file: .off, .zsm (binary, fastest to load), .vtu or .node/.ele")->required();
+  cmd->add_option("output", args->out, "Output file: .off, .zsm (binary, fastest to load), .vtu or .node/.ele")
+      ->required();
   cmd->callback([args] {
     const TetMesh m = args->src.load();
     write_mesh(args->out, m);

@@ -16,7 +16,9 @@ cmp -s from_zsm.off g.off || { echo "FAIL: generate -o .zsm differs from -o .off
 "$zsweep" mesh convert g.off c.zsm >/dev/null || fail=1
 "$zsweep" mesh convert c.zsm back.off >/dev/null || fail=1
 cmp -s back.off g.off || { echo "FAIL: .off -> .zsm -> .off changed the text"; fail=1; }
-info() { "$zsweep" mesh info "$1" | grep -vE '^(mesh|topology \+ validation):' | sed 's/^scalar: *[a-z]*,/scalar: NAME,/'; }
+info() {  # mesh info without the file's name, the timing and the scalar's name
+  "$zsweep" mesh info "$1" | grep -vE '^(mesh|topology \+ validation):' | sed 's/^scalar: *[a-z]*,/scalar: NAME,/'
+}
 info g.off > a.txt; info g.zsm > b.txt
 diff a.txt b.txt >/dev/null || { echo "FAIL: mesh info differs:"; diff a.txt b.txt; fail=1; }
 grep -q '^tets:' b.txt || { echo "FAIL: mesh info g.zsm printed no tet count"; fail=1; }
@@ -29,7 +31,8 @@ printf '{"mesh": "%s", "image": {"width": 64, "height": 48}}' "$tmp/g.zsm" > sce
 cmp -s off.png scene.png || { echo "FAIL: a scene with mesh g.zsm renders unlike g.off"; fail=1; }
 head -c 300 g.zsm > cut.zsm
 "$zsweep" mesh info cut.zsm >out.txt 2>err.txt; rc=$?
-[ $rc -eq 1 ] && [ "$(wc -l <err.txt)" -eq 1 ] && [ ! -s out.txt ] && grep -q '^zsweep: error: cut.zsm: truncated: ' err.txt \
+[ $rc -eq 1 ] && [ "$(wc -l <err.txt)" -eq 1 ] && [ ! -s out.txt ] \
+  && grep -q '^zsweep: error: cut.zsm: truncated: ' err.txt \
   || { echo "FAIL: truncated .zsm: exit $rc: $(cat err.txt)"; fail=1; }
 [ $fail -eq 0 ] && echo "zsm round trip: ok"
 exit $fail

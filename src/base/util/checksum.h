@@ -1,7 +1,7 @@
 // 64-bit checksums of file contents: XXH3-64 with seed 0 (xxHash), a
-// published hash that every language has (Python: xxhash.xxh3_64_intdigest),
-// so a file's checksums can be checked without zsweep. Fast enough to check
-// while reading: ~20 GB/s on data just read, so a load stays I/O-bound.
+// published hash with implementations in most languages, so a file's
+// checksums can be checked without zsweep. Fast enough to check while
+// reading: ~20 GB/s on data just read, so a load stays I/O-bound.
 #pragma once
 
 #include <cstddef>

@@ -70,7 +70,8 @@ using ReadAt = std::function<void(uint64_t offset, char* dst, size_t n)>;
 
 // Magic, version and checksum of the first `avail` bytes of a `total`-byte input.
 Header decode_header(const unsigned char* h, size_t avail, const std::string& name) {
-  if (avail == 0) throw FileError(name, "empty file (a .zsm file starts with a " + num(kZsmHeaderBytes) + "-byte header)");
+  if (avail == 0)
+    throw FileError(name, "empty file (a .zsm file starts with a " + num(kZsmHeaderBytes) + "-byte header)");
   if (std::memcmp(h, kZsmMagic, std::min(avail, sizeof kZsmMagic)) != 0)
     throw FileError(name, "not a .zsm file (bad magic)");
   if (avail < kZsmHeaderBytes)
@@ -145,9 +146,9 @@ void check_layout(const Header& h, uint64_t total, const std::string& name) {
   for (int s = 0; s < kNumSec; ++s) {
     const Section& c = h.sec[s];
     const std::string what = std::string("the ") + kSecName[s] + " section";
+    const std::string count = s == kTets ? num(h.tets) + " tets" : num(h.points) + " points";
     if (s != kStrings && c.size != want[s])
-      throw FileError(name, what + " is " + num(c.size) + " bytes, " +
-                                (s == kTets ? num(h.tets) + " tets" : num(h.points) + " points") + " need " + num(want[s]));
+      throw FileError(name, what + " is " + num(c.size) + " bytes, " + count + " need " + num(want[s]));
     if (s == kStrings && c.size < want[s])
       throw FileError(name, what + " is " + num(c.size) + " bytes, too short for " + num(h.notes + 2) + " strings");
     if (c.offset != align_up(at))
@@ -157,7 +158,8 @@ void check_layout(const Header& h, uint64_t total, const std::string& name) {
                                 ", the file has " + num(total));
     at = c.end();
   }
-  if (total != at) throw FileError(name, num(total - at) + " bytes after the last section, which ends at byte " + num(at));
+  if (total != at)
+    throw FileError(name, num(total - at) + " bytes after the last section, which ends at byte " + num(at));
 }
 
 // Reads section s into dst, hashing each block as it arrives, and the
@@ -168,7 +170,8 @@ void read_section(const ReadAt& read_at, const Header& h, int s, char* dst, cons
   char pad[kAlign] = {};
   read_at(before, pad, size_t(c.offset - before));  // < 64 bytes (check_layout)
   for (uint64_t i = 0; i < c.offset - before; ++i)
-    if (pad[i] != 0) throw FileError(name, std::string("the padding before the ") + kSecName[s] + " section is not zero");
+    if (pad[i] != 0)
+      throw FileError(name, std::string("the padding before the ") + kSecName[s] + " section is not zero");
   Checksum64 sum;
   for (uint64_t done = 0; done < c.size;) {
     const size_t n = size_t(std::min<uint64_t>(c.size - done, kBlock));
@@ -288,7 +291,8 @@ TetMesh read_zsm(const std::string& path) {
 
 void write_zsm(const std::string& path, const TetMesh& m) {
   if (m.has_scalars() && m.scalars.size() != m.points.size())
-    throw FileError(path, "cannot write: " + num(m.scalars.size()) + " scalars for " + num(m.points.size()) + " points");
+    throw FileError(path, "cannot write: " + num(m.scalars.size()) + " scalars for " + num(m.points.size()) +
+                              " points");
   check_indices(m, path, "cannot write: ");
   const std::string strings = strings_of(m);
   const char* data[kNumSec] = {reinterpret_cast<const char*>(m.points.data()),

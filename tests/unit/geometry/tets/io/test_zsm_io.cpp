@@ -31,7 +31,8 @@ constexpr const char* kSecName[4] = {"points", "scalars", "tets", "strings"};
 
 TetMesh sample_mesh() {
   TetMesh m;
-  m.points = {{0.1, 1e-300, -3.5e12}, {1.0 / 3.0, 2, 3}, {4, 5, 6.25}, {7, 8, 9}, {-0.0, 5e-324, 1.7976931348623157e308}};
+  m.points = {{0.1, 1e-300, -3.5e12}, {1.0 / 3.0, 2, 3}, {4, 5, 6.25}, {7, 8, 9},
+              {-0.0, 5e-324, 1.7976931348623157e308}};
   m.scalars = {0.1, 0.2, 1.0 / 7.0, -5, 42};
   m.tets = {{0, 1, 2, 3}, {3, 2, 1, 4}, {4, 0, 1, 2}};
   m.scalar_name = "Température";  // UTF-8
@@ -67,7 +68,8 @@ uint64_t sec_size(const std::string& b, int s) { return get_u64(b, kSecTable + 2
 void reseal(std::string& b) {
   for (int s = 0; s < 4; ++s) {
     const uint64_t off = sec_offset(b, s), size = sec_size(b, s);
-    if (off <= b.size() && size <= b.size() - off) set_u64(b, kSecTable + 24 * s + 16, checksum64(b.data() + off, size));
+    if (off <= b.size() && size <= b.size() - off)
+      set_u64(b, kSecTable + 24 * s + 16, checksum64(b.data() + off, size));
   }
   set_u64(b, kHeaderSum, checksum64(b.data(), kHeaderSum));
 }
@@ -247,7 +249,8 @@ TEST(ZsmIo, CountsBeyondTheFileAreRefusedBeforeAllocating) {
     reseal(c);
     return error_of([&] { parse_zsm(c, "big.zsm"); });
   };
-  expect_error(with(kPointsAt, 1000), "big.zsm", "truncated: the header says 1000 points (24000 bytes), the file has " + n + " bytes");
+  expect_error(with(kPointsAt, 1000), "big.zsm",
+               "truncated: the header says 1000 points (24000 bytes), the file has " + n + " bytes");
   expect_error(with(kPointsAt, uint64_t(1) << 60), "big.zsm",
                "truncated: the header says 1152921504606846976 points (over 2^64 bytes), the file has " + n + " bytes");
   expect_error(with(kTetsAt, uint64_t(1) << 40), "big.zsm",
@@ -271,7 +274,8 @@ TEST(ZsmIo, HeaderFieldsThisVersionDoesNotDefine) {
   std::string b = zsm_bytes(sample_mesh());
   b[12] = 3;
   reseal(b);
-  expect_error(error_of([&] { parse_zsm(b, "h.zsm"); }), "h.zsm", "unknown flags 0x3 in the header (version 1 defines 0x1, scalars)");
+  expect_error(error_of([&] { parse_zsm(b, "h.zsm"); }), "h.zsm",
+               "unknown flags 0x3 in the header (version 1 defines 0x1, scalars)");
   b = zsm_bytes(sample_mesh());
   b[150] = 1;
   reseal(b);
@@ -297,11 +301,13 @@ TEST(ZsmIo, MalformedStringsBehindAValidChecksum) {
   const uint64_t at = sec_offset(b, 3);
   set_u64(b, at, 1000);  // scalar_name's length
   reseal(b);
-  expect_error(error_of([&] { parse_zsm(b, "s.zsm"); }), "s.zsm", "string 0 of the strings section is 1000 bytes, past its end");
+  expect_error(error_of([&] { parse_zsm(b, "s.zsm"); }), "s.zsm",
+               "string 0 of the strings section is 1000 bytes, past its end");
   b = zsm_bytes(sample_mesh());
   set_u64(b, at + sec_size(b, 3) - 3 - 8, 1);  // the last note, "a\0b", one byte long: two are left over
   reseal(b);
-  expect_error(error_of([&] { parse_zsm(b, "s.zsm"); }), "s.zsm", "the strings section has 2 bytes after its last string");
+  expect_error(error_of([&] { parse_zsm(b, "s.zsm"); }), "s.zsm",
+               "the strings section has 2 bytes after its last string");
 }
 
 TEST(ZsmIo, DispatchByExtension) {
