@@ -11,7 +11,7 @@
 #include <cstring>
 #include <functional>
 #include <memory>
-#include <vector>
+#include <string>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -68,7 +68,8 @@ struct Header {
 // Copies n bytes from `offset` of the input to dst; throws FileError.
 using ReadAt = std::function<void(uint64_t offset, char* dst, size_t n)>;
 
-// Magic, version and checksum of the first `avail` bytes of a `total`-byte input.
+// The header, from the first `avail` bytes of the input: magic, length,
+// version, checksum, then what version 1 leaves unused.
 Header decode_header(const unsigned char* h, size_t avail, const std::string& name) {
   if (avail == 0)
     throw FileError(name, "empty file (a .zsm file starts with a " + num(kZsmHeaderBytes) + "-byte header)");
@@ -267,8 +268,9 @@ struct Fd {
 }  // namespace
 
 TetMesh parse_zsm(std::string_view bytes, const std::string& name) {
-  return read_from(bytes.size(), [&](uint64_t off, char* dst, size_t n) { std::memcpy(dst, bytes.data() + off, n); },
-                   name);
+  return read_from(bytes.size(), [&](uint64_t off, char* dst, size_t n) {
+    if (n > 0) std::memcpy(dst, bytes.data() + off, n);  // never a null pointer, even for 0 bytes
+  }, name);
 }
 
 TetMesh read_zsm(const std::string& path) {
