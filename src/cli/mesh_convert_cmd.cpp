@@ -1,4 +1,4 @@
-// `zsweep mesh convert IN OUT`: any readable format to .off, .vtu or .node/.ele.
+// `zsweep mesh convert IN OUT`: any readable format to .off, .zsm, .vtu or .node/.ele.
 #include <cstdio>
 #include <memory>
 
@@ -15,9 +15,10 @@ void add_mesh_convert_command(CLI::App& mesh) {
     std::string out;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = mesh.add_subcommand("convert", "Convert a mesh between formats (.off, .vtu, .node/.ele)");
+  CLI::App* cmd = mesh.add_subcommand("convert", "Convert a mesh between formats (.off, .zsm, .vtu, .node/.ele)");
   args->src.add_options(*cmd, true);
-  cmd->add_option("output", args->out, "Output file: .off, .vtu or .node/.ele")->required();
+  cmd->add_option("output", args->out, "Output file: .off, .zsm (binary, fastest to load), .vtu or .node/.ele")
+      ->required();
   cmd->callback([args] {
     const TetMesh m = args->src.load();
     write_mesh(args->out, m);

@@ -61,7 +61,7 @@ struct Common {
 
 void add_common(CLI::App* cmd, Common& c, const std::string& default_field) {
   c.field = default_field;
-  cmd->add_option("-o,--output", c.out, "Output mesh (.off, .vtu or .node/.ele)")->required();
+  cmd->add_option("-o,--output", c.out, "Output mesh (.off, .zsm, .vtu or .node/.ele)")->required();
   std::vector<std::string> fields = field_names();
   fields.push_back("none");
   cmd->add_option("--field", c.field, "Scalar field to attach")
@@ -75,8 +75,8 @@ void add_common(CLI::App* cmd, Common& c, const std::string& default_field) {
 // Fail on a bad output name before spending minutes meshing.
 void check_output(const std::string& out) {
   MeshFormat f = format_of(out);
-  if (f != MeshFormat::Off && f != MeshFormat::Vtu && f != MeshFormat::TetGen)
-    throw std::invalid_argument(out + ": cannot write this format (expected .off, .vtu or .node/.ele)");
+  if (f != MeshFormat::Off && f != MeshFormat::Zsm && f != MeshFormat::Vtu && f != MeshFormat::TetGen)
+    throw std::invalid_argument(out + ": cannot write this format (expected .off, .zsm, .vtu or .node/.ele)");
 }
 
 using Clock = std::chrono::steady_clock;

@@ -15,7 +15,7 @@ namespace zs {
 
 void MeshSource::add_options(CLI::App& cmd, bool required) {
   auto* o = cmd.add_option("mesh", path,
-                           "Mesh file: .off, .vtu, .vtk, .node/.ele, or a PLOT3D grid (*xyz.bin) with --q"
+                           "Mesh file: .off, .zsm, .vtu, .vtk, .node/.ele, or a PLOT3D grid (*xyz.bin) with --q"
                            " (mesh info also reads sphere files: .pdb, .ent, .cif, .mmcif (.gz), .sph, .sphb)");
   if (required) o->required();
   cmd.add_option("--q", opt.q_path, "PLOT3D solution (q) file for a PLOT3D grid");

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A write that fails half way (here a file size limit, as a full disk would)
 # gives one line that names the output, not its temporary, and says why;
-# exit 1, and nothing left behind: images (EXR, TIFF, PNG), meshes (.off,
+# exit 1, and nothing left behind: images (EXR, TIFF, PNG), meshes (.off, .zsm,
 # .vtu, TetGen .node/.ele, whose writer reports no errors of its own) and
 # sphere files.
 set -u
@@ -30,7 +30,7 @@ check() {  # check OUT KB CMD...
 for ext in exr tif png; do
   check "big.$ext" 64 "$zsweep" render -o "big.$ext" --width 1200 --height 1200 --threads 2
 done
-for ext in off vtu node; do
+for ext in off zsm vtu node; do
   check "x.$ext" 4 "$zsweep" mesh convert box.off "x.$ext"
 done
 for ext in sph sphb; do

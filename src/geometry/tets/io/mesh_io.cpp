@@ -7,6 +7,7 @@
 #include "geometry/tets/io/off_io.h"
 #include "geometry/tets/io/tetgen_io.h"
 #include "geometry/tets/io/vtk_io.h"
+#include "geometry/tets/io/zsm_io.h"
 #include "geometry/triangles/surface_file.h"
 #include "base/util/file_error.h"
 #include "base/util/file_name.h"
@@ -20,6 +21,7 @@ namespace fs = std::filesystem;
 MeshFormat format_of(const std::string& path, const ReadOptions& opt) {
   const std::string e = lower_extension(path);
   if (e == ".off") return MeshFormat::Off;
+  if (e == ".zsm") return MeshFormat::Zsm;
   if (e == ".vtu") return MeshFormat::Vtu;
   if (e == ".vtk") return MeshFormat::VtkLegacy;
   if (e == ".node" || e == ".ele") return MeshFormat::TetGen;
@@ -33,14 +35,16 @@ TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
   // the keyword, and .obj/.ply/.stl be an unknown format.
   if (is_surface_file(path))
     throw FileError(path, "a triangle surface, not a tetrahedral mesh (this command takes tet meshes: .off without "
-                          "the OFF keyword, .vtu, .vtk, .node/.ele, PLOT3D; render and mesh info take surfaces)");
+                          "the OFF keyword, .zsm, .vtu, .vtk, .node/.ele, PLOT3D; render and mesh info take surfaces)");
   const MeshFormat format = format_of(path, opt);
   if (!opt.q_path.empty() && format != MeshFormat::Plot3d)
     throw FileError(path, "a PLOT3D solution file (" + opt.q_path + ") applies to PLOT3D grids only, and this is a " +
                               lower_extension(path) + " mesh");
-  if (format == MeshFormat::Off || format == MeshFormat::TetGen) {
-    // One unnamed scalar column at most: a name is either it or a mistake.
-    TetMesh m = format == MeshFormat::Off ? read_off(path) : read_tetgen(path);
+  if (format == MeshFormat::Off || format == MeshFormat::TetGen || format == MeshFormat::Zsm) {
+    // One scalar at most: a name is either it or a mistake.
+    TetMesh m = format == MeshFormat::Off   ? read_off(path)
+                : format == MeshFormat::Zsm ? read_zsm(path)
+                                            : read_tetgen(path);
     const std::string have = m.scalar_name.empty() ? "scalar" : m.scalar_name;
     if (!opt.scalar.empty() && opt.scalar != have)
       throw FileError(path, "no array named '" + opt.scalar + "'; available: " +
@@ -56,11 +60,12 @@ TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
         throw FileError(path, "PLOT3D grid needs its solution file (--q FILE)");
       return read_plot3d(path, opt);
     case MeshFormat::Off:
+    case MeshFormat::Zsm:
     case MeshFormat::TetGen:  // read above
     case MeshFormat::Unknown:
       break;
   }
-  throw FileError(path, "unknown mesh format (expected .off, .vtu, .vtk, .node/.ele, or PLOT3D with --q)");
+  throw FileError(path, "unknown mesh format (expected .off, .zsm, .vtu, .vtk, .node/.ele, or PLOT3D with --q)");
 }
 
 void write_mesh(const std::string& path, const TetMesh& m) {
@@ -81,9 +86,10 @@ void write_mesh(const std::string& path, const TetMesh& m) {
     node.commit();
     return;
   }
+  if (f == MeshFormat::Zsm) return write_zsm(path, m);  // atomic by itself
   AtomicFile out(path);
   if (f != MeshFormat::Off && f != MeshFormat::Vtu)
-    throw FileError(path, "cannot write this format (expected .off, .vtu or .node/.ele)");
+    throw FileError(path, "cannot write this format (expected .off, .zsm, .vtu or .node/.ele)");
   try {
     if (f == MeshFormat::Off) write_off(out.temp_path(), m);
     else write_vtu(out.temp_path(), m);

@@ -1,5 +1,6 @@
 // Format dispatch: read or write a tet mesh by file name.
 //   .off             classic tet OFF (off_io.h, hand-written)
+//   .zsm             zsweep's binary mesh (zsm_io.h, hand-written)
 //   .vtu .vtk        VTK XML / legacy (vtk_io.h, via VTK readers)
 //   *xyz.bin + q     PLOT3D (plot3d_io.h, via VTK's PLOT3D reader)
 //   .node / .ele     TetGen (tetgen_io.h, via the TetGen library)
@@ -17,7 +18,7 @@ struct ReadOptions {
   std::string q_path;  // PLOT3D solution file; required for PLOT3D grids
 };
 
-enum class MeshFormat { Off, Vtu, VtkLegacy, Plot3d, TetGen, Unknown };
+enum class MeshFormat { Off, Zsm, Vtu, VtkLegacy, Plot3d, TetGen, Unknown };
 
 MeshFormat format_of(const std::string& path, const ReadOptions& opt = {});
 
