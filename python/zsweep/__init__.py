@@ -41,7 +41,7 @@ def _load_extension():
 _zsweep = _load_extension()
 from . import generate  # noqa: F401  (zsweep.generate.shape(...) etc.)
 
-__all__ = ["render", "render_stats", "reference", "reference_stats", "compare", "save", "generate"]
+__all__ = ["render", "render_stats", "Renderer", "reference", "reference_stats", "compare", "save", "generate"]
 
 _DATA_ROOT = "/<zsweep-data>/"  # keys standing for data in place of a path (never a real file)
 
@@ -209,16 +209,17 @@ def _prepare(scene):
             entries.append(dict(v, path=key) if d is not v else key)
         s["surfaces"] = entries
 
-    def default(o):  # numbers from numpy, paths
-        if isinstance(o, np.generic):
-            return o.item()
-        if isinstance(o, np.ndarray):
-            return o.tolist()
-        if isinstance(o, os.PathLike):
-            return os.fspath(o)
-        raise TypeError("scene: %r is not JSON data" % (o,))
+    return json.dumps(s, default=_json_default), data
 
-    return json.dumps(s, default=default), data
+
+def _json_default(o):  # numbers from numpy, paths
+    if isinstance(o, np.generic):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if isinstance(o, os.PathLike):
+        return os.fspath(o)
+    raise TypeError("scene: %r is not JSON data" % (o,))
 
 
 def _call(fn, scene, options, *extra):
@@ -274,6 +275,36 @@ def render(scene=None, channels=None, **options):
     one-line message for bad input; Ctrl-C stops the render.
     """
     return render_stats(scene, channels, **options)[0]
+
+
+class Renderer:
+    """A scene loaded once and rendered many times: for an orbit, or any
+    series of views of one large mesh. The mesh is read and what does not
+    depend on the view (a volume's topology) is built once, here; each
+    render() then pays only for its view. Takes what render() takes.
+
+        r = zsweep.Renderer("mesh.zsm", width=512, height=512)
+        for eye in eyes:
+            img = r.render(camera={"eye": eye, "target": [0, 0, 0]})
+
+    `camera` is the scene's "camera" object (projection, eye, target, up,
+    height, fov_y): the keys given replace the current camera's, and the
+    camera stays for the following renders.
+    """
+
+    def __init__(self, scene=None, **options):
+        self._session = _call(_zsweep.Session, scene, options)
+
+    def render_stats(self, camera=None, channels=None):
+        """Like render, and the render's statistics (time_ms.load and
+        time_ms.topology are this Renderer's, paid once)."""
+        text = "" if camera is None else json.dumps(camera, default=_json_default)
+        img, names, stats = self._session.render(text)
+        return _result(img, names, channels), json.loads(stats)
+
+    def render(self, camera=None, channels=None):
+        """One image of the scene, as zsweep.render returns it."""
+        return self.render_stats(camera, channels)[0]
 
 
 def reference_stats(scene=None, channels=None, ao_samples=0, **options):
