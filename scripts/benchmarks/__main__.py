@@ -17,6 +17,7 @@ BENCHMARKS = {
     "vs-vtk": ("vs_vtk", "volume rendering against VTK's unstructured-grid mappers"),
     "vs-paraview": ("vs_paraview", "zsweep in pvpython against ParaView's volume mappers"),
     "scaling": ("scaling", "thread scaling and peak memory at large sizes"),
+    "scale": ("scale.scale", "mesh size up to 100 M tets: time per phase, bytes per tet, VTK on 10 M (issue 41)"),
 }
 MODE_FLAG = {"spheres-translucent": "--translucent", "spheres-ao": "--ao"}
 
