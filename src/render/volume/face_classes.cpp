@@ -1,6 +1,7 @@
 #include "render/volume/face_classes.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -16,9 +17,10 @@ constexpr size_t kGrain = 1 << 14;
 
 std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, const TransferFunction& tf,
                                       const View& view, FaceClassCounts* counts,
-                                      std::vector<uint8_t>* tet_visible) {
+                                      std::vector<uint8_t>* tet_visible, std::vector<uint8_t>* on_visible) {
   const size_t nt = m.num_tets();
   std::vector<uint8_t> visible(nt, 0);
+  if (on_visible) on_visible->assign(m.num_points(), 0);
   tbb::combinable<FaceClassCounts> part;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, kGrain), [&](const tbb::blocked_range<size_t>& r) {
     FaceClassCounts& c = part.local();
@@ -39,6 +41,8 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
         continue;
       }
       visible[t] = 1;
+      if (on_visible)
+        for (uint32_t v : m.tets[t]) std::atomic_ref<uint8_t>((*on_visible)[v]).store(1, std::memory_order_relaxed);
     }
   });
 

@@ -32,9 +32,13 @@ struct FaceClassCounts {
   uint64_t faces_culled = 0;
 };
 
-// tet_visible (optional) receives one byte per tet.
+// tet_visible (optional) receives one byte per tet; on_visible (optional)
+// one byte per point: 1 on a vertex of a visible tet, which is a vertex of a
+// face that is not culled (the sweep's events). Runs on the calling thread's
+// TBB arena.
 std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, const TransferFunction& tf,
                                       const View& view, FaceClassCounts* counts,
-                                      std::vector<uint8_t>* tet_visible = nullptr);
+                                      std::vector<uint8_t>* tet_visible = nullptr,
+                                      std::vector<uint8_t>* on_visible = nullptr);
 
 }  // namespace zs

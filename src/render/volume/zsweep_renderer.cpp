@@ -183,7 +183,8 @@ struct ZSweepRenderer::Impl {
     const bool clip = std::any_of(in.sv.begin(), in.sv.end(), [&](const ScreenVertex& v) { return !(v.z > z_near); });
     FaceClassCounts fc;
     std::vector<uint8_t> tet_visible;  // only the near-plane clip needs it
-    in.cls = classify_faces(mesh, topo, rs.tf, view, &fc, clip ? &tet_visible : nullptr);
+    std::vector<uint8_t> on_face;  // per point: on a face that is not culled
+    in.cls = classify_faces(mesh, topo, rs.tf, view, &fc, clip ? &tet_visible : nullptr, &on_face);
     std::vector<uint8_t> clipped;  // empty: nothing clipped
     if (clip) {
       clipped.assign(topo.num_faces(), 0);
@@ -197,17 +198,9 @@ struct ZSweepRenderer::Impl {
     // The sweep's events: vertices in front of the near plane on a face that
     // is not culled.
     std::vector<SweepEvent> events;
-    {
-      std::vector<uint8_t> on_face(nv, 0);
-      tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(topo.num_faces()), 1 << 14),
-                        [&](const tbb::blocked_range<uint32_t>& r) {
-        for (uint32_t f = r.begin(); f < r.end(); ++f)
-          if (in.cls[f] != FaceClass::Culled)
-            for (uint32_t v : topo.face(f)) std::atomic_ref<uint8_t>(on_face[v]).store(1, std::memory_order_relaxed);
-      });
-      for (uint32_t v = 0; v < nv; ++v)
-        if (on_face[v] && in.sv[v].z > z_near && std::isfinite(in.sv[v].z)) events.push_back({in.sv[v].z, v});
-    }
+    for (uint32_t v = 0; v < nv; ++v)
+      if (on_face[v] && in.sv[v].z > z_near && std::isfinite(in.sv[v].z)) events.push_back({in.sv[v].z, v});
+    std::vector<uint8_t>().swap(on_face);
     const auto t_order = Clock::now();
     const ScreenTiling tiling{rs.width, rs.height, rs.tile_size};
     in.items = sweep_order(topo, in.sv, in.cls, clipped, events, in.near, in.z_origin, tiling);
