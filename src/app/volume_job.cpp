@@ -7,7 +7,6 @@
 #include <tbb/task_arena.h>
 
 #include "app/scene_jobs.h"
-#include "geometry/tets/renumber.h"
 #include "geometry/tets/topology.h"
 #include "geometry/tets/validate.h"
 #include "base/util/bytes_str.h"
@@ -37,17 +36,7 @@ class VolumeJob : public SceneJob {
     const auto t0 = std::chrono::steady_clock::now();
     // The view-independent state, built once for every frame, on the
     // render's threads.
-    tbb::task_arena(std::max(1, rs_.threads)).execute([&] {
-      // A scattered numbering (ids of one tet far apart) costs every pass a
-      // cache miss per access; renumbered, the image is the same.
-      if (id_spread(m) > kScatteredSpread) {
-        const auto r0 = std::chrono::steady_clock::now();
-        renumber_for_locality(in.mesh);
-        renumbered_ = true;
-        ms_renumber_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
-      }
-      topo_ = build_topology(m);
-    });
+    tbb::task_arena(std::max(1, rs_.threads)).execute([&] { topo_ = build_topology(m); });
     nonfinite_tets_ = topo_.num_nonfinite_tets;
     ms_topology_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     grid_ = TileGrid{rs_.width, rs_.height, rs_.tile_size};
@@ -87,9 +76,7 @@ class VolumeJob : public SceneJob {
   SceneInput& in_;
   RenderSettings rs_;  // outlives every renderer made from it
   Topology topo_;
-  double ms_topology_ = 0;  // renumbering included
-  double ms_renumber_ = 0;
-  bool renumbered_ = false;
+  double ms_topology_ = 0;
   VolumeMemory held_;
   uint64_t nonfinite_tets_ = 0;
 };
@@ -111,8 +98,7 @@ nlohmann::json VolumeJob::stats(const TiledRenderer& r, const FrameReport& f) co
         {"insert", S.ms_insert},
         {"composite", S.ms_composite},
         {"load", in_.ms_load},
-        {"topology", ms_topology_},
-        {"renumber", ms_renumber_}}},
+        {"topology", ms_topology_}}},
       {"pixel_tests", S.pixel_tests},
       {"pixel_hits", S.pixel_hits},
       {"pixel_misses", S.pixel_misses},
@@ -139,7 +125,6 @@ nlohmann::json VolumeJob::stats(const TiledRenderer& r, const FrameReport& f) co
        {{"points", m.num_points()},
         {"tets", m.num_tets()},
         {"tets_nonfinite", nonfinite_tets_},  // left out of the render
-        {"renumbered", renumbered_},          // points and tets reordered for locality (renumber.h)
         {"scalar", m.scalar_name},
         {"scalar_choice", m.scalar_choice}}},  // why the reader chose it ("" when it was its default or named)
       {"image", {{"width", scene.settings.width}, {"height", scene.settings.height}}},

@@ -3,7 +3,11 @@
 // that order. Topology, the per-view passes and the sweep then touch memory
 // in order; on a mesh whose numbering is scattered (a shuffled 10 M-tet grid)
 // that is the difference between seconds and tenths per phase. The mesh is
-// the same set of tets over the same points: only the ids change.
+// the same set of tets over the same points: only the ids change. Images
+// stay the same where no two vertices tie in depth; where they do, the
+// sweep takes tied vertices (and a face's vertices) in id order, so the
+// last bits of a pixel may change (kiefer: 1e-4). Renders therefore never
+// renumber on their own: `zsweep mesh convert --renumber` writes a new mesh.
 #pragma once
 
 #include <cstdint>
@@ -11,11 +15,6 @@
 #include "geometry/tets/tet_mesh.h"
 
 namespace zs {
-
-// Renders renumber a mesh whose id spread is above this: a grid in plain or
-// Morton order is ~1-1.5, a shuffled numbering ~points^(1/3) / 3 (75 for 2 M
-// points).
-constexpr double kScatteredSpread = 4;
 
 struct RenumberStats {
   double spread_before = 0, spread_after = 0;  // id_spread
