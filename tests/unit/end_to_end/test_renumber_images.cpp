@@ -13,12 +13,12 @@
 #include <tbb/task_arena.h>
 
 #include "geometry/tets/default_mesh.h"
-#include "geometry/tets/hex_split.h"
 #include "geometry/tets/io/mesh_io.h"
 #include "geometry/tets/renumber.h"
 #include "geometry/tets/topology.h"
 #include "render/volume/zsweep_renderer.h"
 #include "scene/scene_defaults.h"
+#include "support/test_meshes.h"
 #include "support/test_paths.h"
 
 namespace zs {
@@ -81,17 +81,8 @@ TEST(RenumberImages, DefaultMesh) { expect_same_images(default_mesh(8), "default
 
 TEST(RenumberImages, PlainGridWithDepthTies) {
   // Unjittered: whole planes of vertices at one depth in the orthographic view.
-  TetMesh m;
-  const uint32_t n = 7, nn = n + 1;
-  for (uint32_t k = 0; k < nn; ++k)
-    for (uint32_t j = 0; j < nn; ++j)
-      for (uint32_t i = 0; i < nn; ++i) {
-        m.points.push_back(glm::dvec3(i, j, k));
-        m.scalars.push_back(std::sin(0.7 * i) + 0.1 * j * k);
-      }
-  for (uint32_t k = 0; k < n; ++k)
-    for (uint32_t j = 0; j < n; ++j)
-      for (uint32_t i = 0; i < n; ++i) append_hex_5tets(grid_hex(i, j, k, nn, nn), (i + j + k) & 1, m.tets);
+  const TetMesh m = test::box_mesh({7, 7, 7}, glm::dvec3(0), glm::dvec3(7),
+                                   [](const glm::dvec3& p) { return std::sin(0.7 * p.x) + 0.1 * p.y * p.z; });
   expect_same_images(m, "plain grid");
 }
 

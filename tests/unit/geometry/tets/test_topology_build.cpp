@@ -13,9 +13,9 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
-#include "geometry/tets/hex_split.h"
 #include "geometry/tets/topology.h"
 #include "geometry/tets/validate.h"
+#include "support/test_meshes.h"
 
 namespace zs {
 namespace {
@@ -54,17 +54,8 @@ void expect_same(const TetMesh& m, const Topology& t, const char* what) {
   EXPECT_EQ(t.num_nonfinite_tets, count_nonfinite_tets(m)) << what;
 }
 
-TetMesh grid_mesh(uint32_t n) {
-  TetMesh m;
-  const uint32_t nn = n + 1;
-  for (uint32_t k = 0; k < nn; ++k)
-    for (uint32_t j = 0; j < nn; ++j)
-      for (uint32_t i = 0; i < nn; ++i) m.points.push_back(glm::dvec3(i, j, k));
-  m.scalars.assign(m.points.size(), 1.0);
-  for (uint32_t k = 0; k < n; ++k)
-    for (uint32_t j = 0; j < n; ++j)
-      for (uint32_t i = 0; i < n; ++i) append_hex_5tets(grid_hex(i, j, k, nn, nn), (i + j + k) & 1, m.tets);
-  return m;
+TetMesh grid_mesh(int n) {
+  return test::box_mesh({n, n, n}, glm::dvec3(0), glm::dvec3(n), [](const glm::dvec3&) { return 1.0; });
 }
 
 // The same mesh with its points renumbered, its tets reordered and each
@@ -98,7 +89,7 @@ Topology build_on(const TetMesh& m, int threads) {
 }
 
 TEST(TopologyBuild, MatchesTheReferenceOnAnyThreadCount) {
-  for (uint32_t n : {1u, 3u, 12u}) {
+  for (int n : {1, 3, 12}) {
     const TetMesh m = grid_mesh(n);
     for (int threads : {1, 2, 4}) expect_same(m, build_on(m, threads), "grid");
   }
