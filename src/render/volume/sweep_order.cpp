@@ -38,12 +38,15 @@ namespace {
 
 enum class Cover { Yes, Degenerate, Offscreen };
 
-// Whether a triangle can produce fragments.
-Cover cover(const ScreenVertex v[3], const ScreenTiling& t) {
+// Whether a triangle can produce fragments, and then its one tile (or
+// kManyTiles): one pixel-range computation for both.
+Cover cover(const ScreenVertex v[3], const ScreenTiling& t, uint32_t* tile) {
   const double det = screen_det(v);
   if (det == 0 || !std::isfinite(det)) return Cover::Degenerate;
   int i0, i1, j0, j1;
-  return pixel_range(v, t.width, t.height, &i0, &i1, &j0, &j1) ? Cover::Yes : Cover::Offscreen;
+  if (!pixel_range(v, t.width, t.height, &i0, &i1, &j0, &j1)) return Cover::Offscreen;
+  *tile = single_tile({uint32_t(i0) / t.tile, uint32_t(i1) / t.tile, uint32_t(j0) / t.tile, uint32_t(j1) / t.tile}, t);
+  return Cover::Yes;
 }
 
 constexpr uint32_t kDropped = UINT32_MAX;
@@ -62,12 +65,13 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
   SweepItems it;
   Dropped near_dropped;
   for (size_t k = 0; k < near.size(); ++k) {
-    const Cover c = cover(near[k].v, tiling);
+    uint32_t tile = 0;
+    const Cover c = cover(near[k].v, tiling, &tile);
     if (c != Cover::Yes) {
       near_dropped.add(c);
       continue;
     }
-    it.items.push_back({kNearItem | uint32_t(k), -INFINITY, single_tile(item_tile_box(near[k].v, tiling), tiling)});
+    it.items.push_back({kNearItem | uint32_t(k), -INFINITY, tile});
   }
   // The sweep: each event vertex's rank in sweep order, and the plane's depth there.
   const uint32_t n_events = uint32_t(events.size());
@@ -104,12 +108,13 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
       const uint32_t rk = std::min({rank[fv[0]], rank[fv[1]], rank[fv[2]]});
       if (rk == kDropped) continue;  // no vertex in front of the near plane: clipped
       const ScreenVertex v[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
-      const Cover c = cover(v, tiling);
+      uint32_t tile = 0;
+      const Cover c = cover(v, tiling, &tile);
       if (c != Cover::Yes) {
         d.add(c);
         continue;
       }
-      key[f] = {rk, single_tile(item_tile_box(v, tiling), tiling)};
+      key[f] = {rk, tile};
       std::atomic_ref<uint32_t>(start[rk + 1]).fetch_add(1, std::memory_order_relaxed);
     }
   });
