@@ -1,12 +1,14 @@
 #include "render/volume/sweep_order.h"
 
 #include <algorithm>
-#include <atomic>
+#include <bit>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace zs {
 
@@ -51,6 +53,8 @@ Cover cover(const ScreenVertex v[3], const ScreenTiling& t, uint32_t* tile) {
 
 constexpr uint32_t kDropped = UINT32_MAX;
 constexpr size_t kGrain = 1 << 14;
+constexpr uint64_t kBuckets = 1024;        // rank buckets of the order's first pass
+constexpr size_t kChunkFaces = 1 << 16;   // faces per chunk of the order's passes
 
 struct Dropped {
   uint64_t degenerate = 0, offscreen = 0;
@@ -88,34 +92,44 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
     });
   }
   // A face is projected when the first of its vertices is swept: at the
-  // smallest rank among them. Faces of one vertex follow in id order. A
-  // counting sort by that rank (filled in any order, then each rank's short
-  // run sorted by id), dropping faces that cannot produce a fragment.
+  // smallest rank among them. Faces of one vertex follow in id order. Faces
+  // that cannot produce a fragment are dropped. The order is a two-level
+  // counting sort: faces are scattered into buckets of consecutive ranks
+  // (few enough that every bucket's write position stays in cache), then each
+  // bucket is sorted by rank in cache. Chunks of faces are laid out in face
+  // order inside a bucket and the sort is stable, so ties stay in id order
+  // whatever the thread count.
   const uint32_t nf = uint32_t(topo.num_faces());
+  uint32_t shift = 0;
+  while ((uint64_t(n_events) >> shift) > kBuckets) ++shift;
+  const size_t nb = (size_t(n_events) >> shift) + 1;
+  const size_t chunks = std::clamp<size_t>(nf / kChunkFaces, 1, 16 * size_t(tbb::this_task_arena::max_concurrency()));
+  auto chunk_begin = [&](size_t c) { return uint32_t(uint64_t(nf) * c / chunks); };
   // Per face: its rank (kDropped: left out) and its single tile, found here
   // once rather than again in the scattered fill below.
   struct FaceKey {
     uint32_t rank = kDropped, tile = 0;
   };
   std::vector<FaceKey> key(nf);
-  std::vector<uint32_t> start(size_t(n_events) + 1, 0);
+  std::vector<uint64_t> at(chunks * nb, 0);  // chunk c's entries in bucket b: at[c * nb + b]
   tbb::combinable<Dropped> dropped;
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nf, kGrain), [&](const tbb::blocked_range<uint32_t>& r) {
+  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
     Dropped& d = dropped.local();
-    for (uint32_t f = r.begin(); f < r.end(); ++f) {
+    uint64_t* count = at.data() + c * nb;
+    for (uint32_t f = chunk_begin(c); f < chunk_begin(c + 1); ++f) {
       if ((!done.empty() && done[f]) || cls[f] == FaceClass::Culled) continue;
       const auto fv = topo.face(f);
       const uint32_t rk = std::min({rank[fv[0]], rank[fv[1]], rank[fv[2]]});
       if (rk == kDropped) continue;  // no vertex in front of the near plane: clipped
       const ScreenVertex v[3] = {sv[fv[0]], sv[fv[1]], sv[fv[2]]};
       uint32_t tile = 0;
-      const Cover c = cover(v, tiling, &tile);
-      if (c != Cover::Yes) {
-        d.add(c);
+      const Cover cv = cover(v, tiling, &tile);
+      if (cv != Cover::Yes) {
+        d.add(cv);
         continue;
       }
       key[f] = {rk, tile};
-      std::atomic_ref<uint32_t>(start[rk + 1]).fetch_add(1, std::memory_order_relaxed);
+      ++count[rk >> shift];
     }
   });
   it.degenerate = near_dropped.degenerate;
@@ -124,27 +138,53 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
     it.degenerate += d.degenerate;
     it.offscreen += d.offscreen;
   });
-  for (size_t r = 0; r < n_events; ++r) start[r + 1] += start[r];
-  const size_t base = it.size(), total = base + start[n_events];
-  it.items.resize(total);
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, nf, kGrain), [&](const tbb::blocked_range<uint32_t>& r) {
-      for (uint32_t f = r.begin(); f < r.end(); ++f) {
-        const FaceKey fk = key[f];
-        if (fk.rank == kDropped) continue;
-        const size_t k = base + std::atomic_ref<uint32_t>(fill[fk.rank]).fetch_add(1, std::memory_order_relaxed);
-        it.items[k] = {f, z_at[fk.rank], fk.tile};
-      }
-    });
-  }
-  std::vector<FaceKey>().swap(key);
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n_events, kGrain / 4), [&](const tbb::blocked_range<uint32_t>& r) {
-    for (uint32_t rk = r.begin(); rk < r.end(); ++rk) {
-      SweepItem* lo = it.items.data() + base + start[rk];
-      SweepItem* hi = it.items.data() + base + start[rk + 1];
-      if (hi - lo > 1) std::sort(lo, hi, [](const SweepItem& a, const SweepItem& b) { return a.id < b.id; });
+  // Bucket-major, then chunk: where chunk c's entries of bucket b start.
+  const size_t base = it.size();
+  std::vector<uint64_t> bucket_start(nb + 1);
+  uint64_t run = base;
+  for (size_t b = 0; b < nb; ++b) {
+    bucket_start[b] = run;
+    for (size_t c = 0; c < chunks; ++c) {
+      const uint64_t n = at[c * nb + b];
+      at[c * nb + b] = run;
+      run += n;
     }
+  }
+  bucket_start[nb] = run;
+  it.items.resize(run);
+  // The scatter carries each face's rank in place of its plane depth.
+  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+    uint64_t* pos = at.data() + c * nb;
+    for (uint32_t f = chunk_begin(c); f < chunk_begin(c + 1); ++f) {
+      const FaceKey fk = key[f];
+      if (fk.rank == kDropped) continue;
+      it.items[pos[fk.rank >> shift]++] = {f, std::bit_cast<float>(fk.rank), fk.tile};
+    }
+  });
+  std::vector<FaceKey>().swap(key);
+  std::vector<uint64_t>().swap(at);
+  // Each bucket: a stable counting sort by rank through a per-thread buffer,
+  // with the plane's depth written in place of the rank.
+  struct Scratch {
+    std::vector<uint32_t> count;
+    std::vector<SweepItem> out;
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  tbb::parallel_for(size_t(0), nb, [&](size_t b) {
+    SweepItem* lo = it.items.data() + bucket_start[b];
+    const size_t n = bucket_start[b + 1] - bucket_start[b];
+    if (n == 0) return;
+    Scratch& s = scratch.local();
+    const uint32_t r0 = uint32_t(b << shift);
+    s.count.assign((size_t(1) << shift) + 1, 0);
+    for (size_t k = 0; k < n; ++k) ++s.count[std::bit_cast<uint32_t>(lo[k].z_sweep) - r0 + 1];
+    for (size_t r = 1; r < s.count.size(); ++r) s.count[r] += s.count[r - 1];
+    s.out.resize(n);
+    for (size_t k = 0; k < n; ++k) {
+      const uint32_t rk = std::bit_cast<uint32_t>(lo[k].z_sweep);
+      s.out[s.count[rk - r0]++] = {lo[k].id, z_at[rk], lo[k].tile};
+    }
+    std::copy(s.out.begin(), s.out.end(), lo);
   });
   return it;
 }
