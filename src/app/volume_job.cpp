@@ -53,7 +53,7 @@ class VolumeJob : public SceneJob {
   }
   std::unique_ptr<TiledRenderer> renderer(uint64_t extra_bytes, bool progress) override {
     rs_.progress = progress;  // the renderer keeps a reference to rs_
-    return std::make_unique<ZSweepRenderer>(in_.mesh, topo_, rs_, extra_bytes + held_.mesh + held_.topology);
+    return std::make_unique<ZSweepRenderer>(in_.mesh, topo_, rs_, extra_bytes + held_.mesh + held_.topology, &buffers_);
   }
   double total_ms(const TiledRenderer& r) const override { return of(r).stats().ms_total; }
   nlohmann::json stats(const TiledRenderer& r, const FrameReport& f) const override;
@@ -76,6 +76,9 @@ class VolumeJob : public SceneJob {
   SceneInput& in_;
   RenderSettings rs_;  // outlives every renderer made from it
   Topology topo_;
+  // The per-view arrays, reused by every frame (render_frames drops one
+  // renderer before it makes the next).
+  ViewBuffers buffers_;
   double ms_topology_ = 0;
   VolumeMemory held_;
   uint64_t nonfinite_tets_ = 0;

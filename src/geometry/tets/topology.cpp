@@ -51,28 +51,48 @@ Topology build_topology(const TetMesh& m) {
   // prefix, fill), each record 4 bytes (tet << 2 | k): the vertices are read
   // back from the tet. Buckets are filled in any order and then sorted by the
   // full key (b, c, tet, k), so the result does not depend on the threads.
+  // Three of a tet's faces hold its smallest vertex and the fourth its
+  // second smallest: two counter updates per tet, not four.
+  struct Mins {
+    uint32_t k0, m0, m1;  // the smallest vertex's slot, it, and the smallest of the rest
+  };
+  auto mins = [](const Tet& t) {
+    uint32_t k0 = 0;
+    for (uint32_t k = 1; k < 4; ++k)
+      if (t[k] < t[k0]) k0 = k;
+    uint32_t m1 = UINT32_MAX;
+    for (uint32_t k = 0; k < 4; ++k)
+      if (k != k0) m1 = std::min(m1, t[k]);
+    return Mins{k0, t[k0], m1};
+  };
   std::vector<uint32_t> start(nv + 1, 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, kGrain), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t t = r.begin(); t < r.end(); ++t)
-      for (uint32_t k = 0; k < 4; ++k)
-        std::atomic_ref<uint32_t>(start[Topology::tet_face(tets[t], k)[0]]).fetch_add(1, std::memory_order_relaxed);
+    for (size_t t = r.begin(); t < r.end(); ++t) {
+      const Mins x = mins(tets[t]);
+      std::atomic_ref<uint32_t>(start[x.m0]).fetch_add(3, std::memory_order_relaxed);
+      std::atomic_ref<uint32_t>(start[x.m1]).fetch_add(1, std::memory_order_relaxed);
+    }
   });
   prefix_sum(start);  // start[nv] = 4 nt
   std::vector<uint32_t> recs(4 * nt);
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, kGrain), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t t = r.begin(); t < r.end(); ++t)
-        for (uint32_t k = 0; k < 4; ++k) {
-          const uint32_t a = Topology::tet_face(tets[t], k)[0];
-          recs[std::atomic_ref<uint32_t>(fill[a]).fetch_add(1, std::memory_order_relaxed)] = uint32_t(t) << 2 | k;
-        }
+      for (size_t t = r.begin(); t < r.end(); ++t) {
+        const Mins x = mins(tets[t]);
+        uint32_t* at = recs.data() + std::atomic_ref<uint32_t>(fill[x.m0]).fetch_add(3, std::memory_order_relaxed);
+        for (uint32_t k = 0; k < 4; ++k)
+          if (k != x.k0) *at++ = uint32_t(t) << 2 | k;
+        recs[std::atomic_ref<uint32_t>(fill[x.m1]).fetch_add(1, std::memory_order_relaxed)] = uint32_t(t) << 2 | x.k0;
+      }
     });
   }
 
   // Sort each bucket and count its unique faces (into `uniq`, then their
-  // first ids by a prefix sum: faces are numbered in (a, b, c) order).
+  // first ids by a prefix sum: faces are numbered in (a, b, c) order). Each
+  // face's first record is marked, so the pass below reads no tet.
   std::vector<uint32_t> uniq(nv + 1, 0);
+  std::vector<uint8_t> first(4 * nt);
   tbb::enumerable_thread_specific<std::vector<Keyed>> scratch;
   auto sort_bucket = [&](uint32_t a, std::vector<Keyed>& ks) {
     ks.clear();
@@ -88,8 +108,10 @@ Topology build_topology(const TetMesh& m) {
       sort_bucket(uint32_t(a), ks);
       uint32_t n = 0;
       for (size_t i = 0; i < ks.size(); ++i) {
+        const bool starts = i == 0 || ks[i].b != ks[i - 1].b || ks[i].c != ks[i - 1].c;
         recs[start[a] + i] = ks[i].rec;
-        n += i == 0 || ks[i].b != ks[i - 1].b || ks[i].c != ks[i - 1].c;
+        first[start[a] + i] = starts;
+        n += starts;
       }
       uniq[a] = n;
     }
@@ -106,14 +128,10 @@ Topology build_topology(const TetMesh& m) {
     std::vector<uint32_t>& nm = nonmanifold.local();
     for (size_t a = r.begin(); a < r.end(); ++a) {
       uint32_t fid = uniq[a];
-      const uint32_t* lo = recs.data() + start[a];
-      const uint32_t* hi = recs.data() + start[a + 1];
-      auto key = [&](uint32_t rec) { return Topology::tet_face(tets[rec >> 2], rec & 3); };
-      for (const uint32_t* q = lo; q < hi; ++fid) {
-        const auto f = key(*q);
-        const uint32_t* e = q + 1;
-        while (e < hi && key(*e) == f) ++e;
-        topo.face_tets[fid] = {*q, e - q > 1 ? q[1] >> 2 : kNoTet};
+      for (uint32_t q = start[a], hi = start[a + 1]; q < hi; ++fid) {
+        uint32_t e = q + 1;
+        while (e < hi && !first[e]) ++e;
+        topo.face_tets[fid] = {recs[q], e - q > 1 ? recs[q + 1] >> 2 : kNoTet};
         if (e - q > 2) nm.push_back(fid);
         nb += e - q == 1;
         q = e;
@@ -125,6 +143,7 @@ Topology build_topology(const TetMesh& m) {
   for (const auto& v : nonmanifold) topo.nonmanifold_faces.insert(topo.nonmanifold_faces.end(), v.begin(), v.end());
   std::sort(topo.nonmanifold_faces.begin(), topo.nonmanifold_faces.end());
   std::vector<uint32_t>().swap(recs);
+  std::vector<uint8_t>().swap(first);
 
   topo.tet_degenerate.resize(nt);
   tbb::combinable<size_t> nonfinite;
@@ -184,9 +203,10 @@ uint64_t topology_bytes(uint64_t tets) {
 }
 
 uint64_t topology_build_peak_bytes(uint64_t points, uint64_t tets) {
-  // Counts, fill cursors and unique counts per vertex; 4-byte records per
-  // tet face; the faces, allocated while the records live.
-  return 3 * (points + 1) * 4 + 16 * tets + topology_bytes(tets) - tets;
+  // Counts, fill cursors and unique counts per vertex; 4-byte records and
+  // their 1-byte first-of-face marks per tet face; the faces, allocated while
+  // the records live.
+  return 3 * (points + 1) * 4 + 20 * tets + topology_bytes(tets) - tets;
 }
 
 }  // namespace zs

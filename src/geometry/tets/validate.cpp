@@ -104,7 +104,18 @@ bool ValidationReport::clean() const {
 }
 
 size_t count_nonfinite_tets(const TetMesh& m) {
-  // One pass over every tet: on the caller's TBB arena.
+  // On the caller's TBB arena. Points first: with every point finite (the
+  // usual case) no tet can be otherwise, and the pass over the tets, five
+  // times the bytes and scattered, is skipped.
+  const size_t bad_points = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, m.points.size(), 1 << 16), size_t(0),
+      [&](const tbb::blocked_range<size_t>& r, size_t n) {
+        for (size_t v = r.begin(); v < r.end(); ++v)
+          n += !finite3(m.points[v]) || (m.has_scalars() && !std::isfinite(m.scalars[v]));
+        return n;
+      },
+      std::plus<size_t>());
+  if (bad_points == 0) return 0;
   return tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, m.tets.size(), 1 << 14), size_t(0),
       [&](const tbb::blocked_range<size_t>& r, size_t n) {

@@ -17,7 +17,8 @@ constexpr size_t kGrain = 1 << 14;
 
 std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, const TransferFunction& tf,
                                       const View& view, FaceClassCounts* counts,
-                                      std::vector<uint8_t>* tet_visible, std::vector<uint8_t>* on_visible) {
+                                      std::vector<uint8_t>* tet_visible, std::vector<uint8_t>* on_visible,
+                                      std::vector<FaceClass> storage) {
   const size_t nt = m.num_tets();
   std::vector<uint8_t> visible(nt, 0);
   if (on_visible) on_visible->assign(m.num_points(), 0);
@@ -46,7 +47,8 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
     }
   });
 
-  std::vector<FaceClass> cls(topo.num_faces(), FaceClass::Culled);
+  std::vector<FaceClass> cls = std::move(storage);  // a previous frame's, when given
+  cls.assign(topo.num_faces(), FaceClass::Culled);
   const glm::dvec3 eye = view.eye(), fwd = view.forward();
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(topo.num_faces()), kGrain),
                     [&](const tbb::blocked_range<uint32_t>& r) {

@@ -39,6 +39,7 @@ struct FaceClassCounts {
 std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, const TransferFunction& tf,
                                       const View& view, FaceClassCounts* counts,
                                       std::vector<uint8_t>* tet_visible = nullptr,
-                                      std::vector<uint8_t>* on_visible = nullptr);
+                                      std::vector<uint8_t>* on_visible = nullptr,
+                                      std::vector<FaceClass> storage = {});
 
 }  // namespace zs

@@ -65,8 +65,11 @@ struct Dropped {
 
 SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv, const std::vector<FaceClass>& cls,
                        const std::vector<uint8_t>& done, const std::vector<SweepEvent>& events,
-                       const std::vector<NearTriangle>& near, double z_origin, const ScreenTiling& tiling) {
+                       const std::vector<NearTriangle>& near, double z_origin, const ScreenTiling& tiling,
+                       std::vector<SweepItem> storage, std::vector<uint32_t>* words) {
   SweepItems it;
+  it.items = std::move(storage);
+  it.items.clear();
   Dropped near_dropped;
   for (size_t k = 0; k < near.size(); ++k) {
     uint32_t tile = 0;
@@ -106,17 +109,19 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
   const size_t chunks = std::clamp<size_t>(nf / kChunkFaces, 1, 16 * size_t(tbb::this_task_arena::max_concurrency()));
   auto chunk_begin = [&](size_t c) { return uint32_t(uint64_t(nf) * c / chunks); };
   // Per face: its rank (kDropped: left out) and its single tile, found here
-  // once rather than again in the scattered fill below.
-  struct FaceKey {
-    uint32_t rank = kDropped, tile = 0;
-  };
-  std::vector<FaceKey> key(nf);
+  // once rather than again in the scattered fill below; two words a face, in
+  // the caller's array when it gives one (it becomes the bins' next).
+  std::vector<uint32_t> own;
+  std::vector<uint32_t>& keys = words ? *words : own;
+  if (keys.size() < 2 * size_t(nf)) keys.resize(2 * size_t(nf));
+  uint32_t* key = keys.data();
   std::vector<uint64_t> at(chunks * nb, 0);  // chunk c's entries in bucket b: at[c * nb + b]
   tbb::combinable<Dropped> dropped;
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
     Dropped& d = dropped.local();
     uint64_t* count = at.data() + c * nb;
     for (uint32_t f = chunk_begin(c); f < chunk_begin(c + 1); ++f) {
+      key[2 * size_t(f)] = kDropped;
       if ((!done.empty() && done[f]) || cls[f] == FaceClass::Culled) continue;
       const auto fv = topo.face(f);
       const uint32_t rk = std::min({rank[fv[0]], rank[fv[1]], rank[fv[2]]});
@@ -128,7 +133,8 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
         d.add(cv);
         continue;
       }
-      key[f] = {rk, tile};
+      key[2 * size_t(f)] = rk;
+      key[2 * size_t(f) + 1] = tile;
       ++count[rk >> shift];
     }
   });
@@ -156,12 +162,12 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
     uint64_t* pos = at.data() + c * nb;
     for (uint32_t f = chunk_begin(c); f < chunk_begin(c + 1); ++f) {
-      const FaceKey fk = key[f];
-      if (fk.rank == kDropped) continue;
-      it.items[pos[fk.rank >> shift]++] = {f, std::bit_cast<float>(fk.rank), fk.tile};
+      const uint32_t rk = key[2 * size_t(f)];
+      if (rk == kDropped) continue;
+      it.items[pos[rk >> shift]++] = {f, std::bit_cast<float>(rk), key[2 * size_t(f) + 1]};
     }
   });
-  std::vector<FaceKey>().swap(key);
+  std::vector<uint32_t>().swap(own);
   std::vector<uint64_t>().swap(at);
   // Each bucket: a stable counting sort by rank through a per-thread buffer,
   // with the plane's depth written in place of the rank.

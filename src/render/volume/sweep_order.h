@@ -58,10 +58,12 @@ struct SweepItems {
 // faces, drawn as near pieces; empty: none); `events`: the vertices that
 // start a face, in any order. Depths are stored relative to z_origin, as
 // fragments are. Runs on the calling thread's TBB arena; the result does not
-// depend on its thread count.
+// depend on its thread count. `storage` and `words` (8 bytes a face of
+// scratch) may hold a previous frame's arrays, reused (view_buffers.h).
 SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv, const std::vector<FaceClass>& cls,
                        const std::vector<uint8_t>& done, const std::vector<SweepEvent>& events,
-                       const std::vector<NearTriangle>& near, double z_origin, const ScreenTiling& tiling);
+                       const std::vector<NearTriangle>& near, double z_origin, const ScreenTiling& tiling,
+                       std::vector<SweepItem> storage = {}, std::vector<uint32_t>* words = nullptr);
 
 // An item's screen triangle: a face's vertices in ascending id order.
 inline void item_triangle(const SweepItems& items, size_t k, const Topology& topo, const std::vector<ScreenVertex>& sv,

@@ -8,8 +8,9 @@
 namespace zs {
 
 TileBins bin_items(const SweepItems& items, const Topology& topo, const std::vector<ScreenVertex>& sv,
-                   const std::vector<NearTriangle>& near, const ScreenTiling& t) {
+                   const std::vector<NearTriangle>& near, const ScreenTiling& t, std::vector<uint32_t> storage) {
   TileBins b;
+  b.items = std::move(storage);  // memory already mapped, when given
   b.cols = (t.width + t.tile - 1) / t.tile;
   b.rows = (t.height + t.tile - 1) / t.tile;
   const size_t tiles = size_t(b.cols) * b.rows, n = items.size();
@@ -47,7 +48,7 @@ TileBins bin_items(const SweepItems& items, const Topology& topo, const std::vec
     }
   }
   b.offset[tiles] = run;
-  b.items.resize(run);
+  b.items.resize(run);  // every entry is written below
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) { each(c, [&](uint64_t& pos, uint32_t k) { b.items[pos++] = k; }); });
   return b;
 }

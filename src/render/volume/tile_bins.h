@@ -18,6 +18,7 @@ struct TileBins {
 // Bins for the tiling the items were made with (sweep_order), on the calling
 // thread's TBB arena; the bins do not depend on its thread count.
 TileBins bin_items(const SweepItems& items, const Topology& topo, const std::vector<ScreenVertex>& sv,
-                   const std::vector<NearTriangle>& near, const ScreenTiling& tiling);
+                   const std::vector<NearTriangle>& near, const ScreenTiling& tiling,
+                   std::vector<uint32_t> storage = {});
 
 }  // namespace zs

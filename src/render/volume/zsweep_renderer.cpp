@@ -130,9 +130,12 @@ struct ZSweepRenderer::Impl {
   // calls: MPI ranks call it once per run of tiles.
   tbb::enumerable_thread_specific<TileWorkspace> spaces;
 
-  Impl(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings, uint64_t sink_bytes)
+  ViewBuffers* reuse;  // where the per-view arrays go back to, or null
+
+  Impl(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings, uint64_t sink_bytes,
+       ViewBuffers* buffers)
       : rs(settings), view(settings.camera, settings.width, settings.height), integ(settings.tf, settings.integrator),
-        in{topo, settings, view, integ, {}, {}, {}, {}, {}, 0} {
+        in{topo, settings, view, integ, {}, {}, {}, {}, {}, 0}, reuse(buffers) {
     const auto t_start = Clock::now();
     RenderStats& S = setup;
     // Checked before anything large is allocated, with the bins counted as
@@ -149,7 +152,9 @@ struct ZSweepRenderer::Impl {
     // The per-view set-up runs on the render's threads; none of its results
     // depends on how many.
     tbb::task_arena(threads).execute([&] { prepare(mesh, topo); });
-    const uint64_t shared = shared0 + in.bins.items.size() * 4 + in.bins.offset.size() * 8;
+    // The bins live in the order's key array (two words a face, freed in
+    // the count above) when it is larger than they need.
+    const uint64_t shared = shared0 - topo.num_faces() * 4 + in.bins.items.capacity() * 4 + in.bins.offset.size() * 8;
     plan = plan_render(budget, shared, grid.max_tile_pixels(), threads);
     if (plan.max_fragments == 0)
       throw budget_too_small(rs, budget, shared + uint64_t(threads) * (tile_state + kMinPoolFragments * 16));
@@ -157,10 +162,21 @@ struct ZSweepRenderer::Impl {
     S.ms_setup = ms_since(t_start);
   }
 
+  ~Impl() {
+    if (!reuse) return;
+    reuse->sv = std::move(in.sv);
+    reuse->cls = std::move(in.cls);
+    reuse->items = std::move(in.items.items);
+    reuse->words = std::move(in.bins.items);
+  }
+
   // View, classes, near-plane clip, sweep order and bins (in.*, setup.*).
   void prepare(const TetMesh& mesh, const Topology& topo) {
     RenderStats& S = setup;
     const size_t nv = mesh.num_points();
+    ViewBuffers given;
+    if (reuse) std::swap(given, *reuse);
+    in.sv = std::move(given.sv);
     in.sv.resize(nv);
     const double zmin = tbb::parallel_reduce(
         tbb::blocked_range<uint32_t>(0, uint32_t(nv), 1 << 14), double(INFINITY),
@@ -184,7 +200,7 @@ struct ZSweepRenderer::Impl {
     FaceClassCounts fc;
     std::vector<uint8_t> tet_visible;  // only the near-plane clip needs it
     std::vector<uint8_t> on_face;  // per point: on a face that is not culled
-    in.cls = classify_faces(mesh, topo, rs.tf, view, &fc, clip ? &tet_visible : nullptr, &on_face);
+    in.cls = classify_faces(mesh, topo, rs.tf, view, &fc, clip ? &tet_visible : nullptr, &on_face, std::move(given.cls));
     std::vector<uint8_t> clipped;  // empty: nothing clipped
     if (clip) {
       clipped.assign(topo.num_faces(), 0);
@@ -203,12 +219,13 @@ struct ZSweepRenderer::Impl {
     std::vector<uint8_t>().swap(on_face);
     const auto t_order = Clock::now();
     const ScreenTiling tiling{rs.width, rs.height, rs.tile_size};
-    in.items = sweep_order(topo, in.sv, in.cls, clipped, events, in.near, in.z_origin, tiling);
+    in.items = sweep_order(topo, in.sv, in.cls, clipped, events, in.near, in.z_origin, tiling, std::move(given.items),
+                           &given.words);
     std::vector<SweepEvent>().swap(events);
     std::vector<uint8_t>().swap(clipped);
     const auto t_bins = Clock::now();
     S.ms_order = ms_since(t_order);
-    in.bins = bin_items(in.items, topo, in.sv, in.near, tiling);
+    in.bins = bin_items(in.items, topo, in.sv, in.near, tiling, std::move(given.words));
     S.ms_binning = ms_since(t_bins);
     S.faces_offscreen = in.items.offscreen;
     S.faces_degenerate = in.items.degenerate;
@@ -217,8 +234,8 @@ struct ZSweepRenderer::Impl {
 };
 
 ZSweepRenderer::ZSweepRenderer(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings,
-                               uint64_t sink_bytes)
-    : impl_(std::make_unique<Impl>(mesh, topo, settings, sink_bytes)) {}
+                               uint64_t sink_bytes, ViewBuffers* reuse)
+    : impl_(std::make_unique<Impl>(mesh, topo, settings, sink_bytes, reuse)) {}
 ZSweepRenderer::~ZSweepRenderer() = default;
 const TileGrid& ZSweepRenderer::grid() const { return impl_->grid; }
 const RenderStats& ZSweepRenderer::setup_stats() const { return impl_->setup; }

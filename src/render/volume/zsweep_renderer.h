@@ -24,6 +24,7 @@
 #include "render/volume/render_plan.h"
 #include "render/volume/render_settings.h"
 #include "render/volume/render_stats.h"
+#include "render/volume/view_buffers.h"
 
 namespace zs {
 
@@ -35,7 +36,10 @@ namespace zs {
 class ZSweepRenderer : public TiledRenderer {
  public:
   // `sink_bytes`: what the caller's sink holds, counted against the budget.
-  ZSweepRenderer(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings, uint64_t sink_bytes = 0);
+  // `reuse`: per-view arrays a previous renderer of this mesh gave back (or
+  // empty ones); this one takes them and gives its own back when destroyed.
+  ZSweepRenderer(const TetMesh& mesh, const Topology& topo, const RenderSettings& settings, uint64_t sink_bytes = 0,
+                 ViewBuffers* reuse = nullptr);
   ~ZSweepRenderer() override;
   ZSweepRenderer(const ZSweepRenderer&) = delete;
   ZSweepRenderer& operator=(const ZSweepRenderer&) = delete;

@@ -1,6 +1,7 @@
 // The sweep's event order (sweep_events.h): (depth, id) whatever the input
 // order, with many equal depths and both signed zeros, on any thread count.
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -30,6 +31,31 @@ TEST(SweepEvents, SortedInDepthThenIdOrder) {
         ASSERT_EQ(a.z, want[size_t(i)].z) << n << " " << i;  // -0 == +0
         ASSERT_EQ(a.v, want[size_t(i)].v) << n << " " << i;
       }
+    }
+  }
+}
+
+// Large lists go through depth buckets: spread, crowded into a few buckets,
+// with a range too wide to bucket, and with a NaN (sorted last, as the key orders it).
+TEST(SweepEvents, BucketedSortMatchesAPlainSort) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.5, 3.0);
+  for (int pattern = 0; pattern < 4; ++pattern) {
+    std::vector<SweepEvent> e;
+    for (uint32_t i = 0; i < 200000; ++i) {
+      double z = u(rng);
+      if (pattern == 1) z = i % 100 == 0 ? 1e6 : std::round(z * 1e3) * 1e-9;  // one far depth, the rest in one bucket
+      if (pattern == 2 && i == 7) z = -1e308, e.push_back({1e308, i + 1000000});
+      if (pattern == 3 && i == 9) z = NAN;
+      e.push_back({z, uint32_t(rng() % 400000)});
+    }
+    std::vector<SweepKey> want(e.size());
+    for (size_t i = 0; i < e.size(); ++i) want[i] = sweep_key(e[i].z, e[i].v);
+    std::sort(want.begin(), want.end());
+    for (int threads : {1, 3}) {
+      std::vector<SweepKey> keys;
+      tbb::task_arena(threads).execute([&] { keys = sorted_events(e); });
+      ASSERT_TRUE(keys == want) << "pattern " << pattern << ", " << threads << " threads";
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "geometry/tets/topology.h"
+#include "raster/image_sink.h"
 #include "support/test_meshes.h"
 #include "render/volume/zsweep_renderer.h"
 
@@ -268,6 +269,49 @@ TEST(ZSweep, ThreadsGiveBitIdenticalImages) {
   EXPECT_EQ(s1.rendered_pixels, s3.rendered_pixels);
   ASSERT_EQ(one.rgba.size(), three.rgba.size());
   for (size_t k = 0; k < one.rgba.size(); ++k) ASSERT_EQ(one.rgba[k], three.rgba[k]) << k;
+}
+
+// Frames of one mesh reuse the per-view arrays (view_buffers.h): every frame
+// is bit-identical to a fresh render of its view, across sizes, tile sizes,
+// an eye inside the mesh (near-plane pieces) and a view that culls all.
+TEST(ZSweep, ReusedViewBuffersGiveFreshImages) {
+  const glm::dvec3 lo{-1, -1, -1}, hi{1, 1, 1};
+  auto field = [](const glm::dvec3& p) { return 0.5 + 0.3 * p.x * p.y + 0.2 * p.z; };
+  const TetMesh m = test::box_mesh({5, 4, 6}, lo, hi, field);
+  const Topology t = build_topology(m);
+  TransferFunction tf({{0, 0.9, 0.3, 0.1}, {1, 0.1, 0.4, 0.9}}, {{0.0, 0.1}, {0.4, 0.8}, {1.0, 0.3}}, 0.7);
+  ViewBuffers buffers;
+  struct View {
+    uint32_t w, h, tile;
+    glm::dvec3 eye;
+    bool invisible;
+  };
+  for (const View& v : {View{90, 70, 16, {2, 2.5, 3}, false}, View{40, 30, 64, {-3, 1, 0.5}, false},
+                        View{64, 48, 8, {0.2, 0.1, 0.3}, false}, View{50, 50, 16, {2, 2.5, 3}, true},
+                        View{120, 20, 32, {0.5, -3, 1}, false}}) {
+    RenderSettings rs;
+    rs.width = v.w;
+    rs.height = v.h;
+    rs.tile_size = v.tile;
+    rs.camera.projection = Projection::Perspective;
+    rs.camera.eye = v.eye;
+    rs.camera.fov_y = 70;
+    rs.tf = v.invisible ? TransferFunction({{0, 1, 1, 1}}, {{0, 0.0}}, 1.0) : tf;
+    RenderStats fresh_st;
+    const Image fresh = render_zsweep(m, t, rs, &fresh_st);
+    Image reused;
+    {
+      ZSweepRenderer r(m, t, rs, 0, &buffers);
+      ImageSink sink(r.grid());
+      r.render_tiles(sink, nullptr);
+      reused = std::move(sink.image);
+      EXPECT_EQ(r.stats().fragments, fresh_st.fragments);
+    }
+    EXPECT_EQ(v.invisible, fresh_st.fragments == 0);
+    EXPECT_FALSE(buffers.items.empty() && !v.invisible) << "the renderer gives its arrays back";
+    ASSERT_EQ(fresh.rgba.size(), reused.rgba.size());
+    for (size_t k = 0; k < fresh.rgba.size(); ++k) ASSERT_EQ(fresh.rgba[k], reused.rgba[k]) << v.w << " at " << k;
+  }
 }
 
 // Tiles sweep their own bins in the global sweep order: every pixel sees the
