@@ -74,7 +74,7 @@ Topology build_topology(const TetMesh& m) {
     }
   });
   prefix_sum(start);  // start[nv] = 4 nt
-  std::vector<uint32_t> recs(4 * nt);
+  UninitVector<uint32_t> recs(4 * nt);  // every record is written by the fill
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, kGrain), [&](const tbb::blocked_range<size_t>& r) {
@@ -92,7 +92,7 @@ Topology build_topology(const TetMesh& m) {
   // first ids by a prefix sum: faces are numbered in (a, b, c) order). Each
   // face's first record is marked, so the pass below reads no tet.
   std::vector<uint32_t> uniq(nv + 1, 0);
-  std::vector<uint8_t> first(4 * nt);
+  UninitVector<uint8_t> first(4 * nt);
   tbb::enumerable_thread_specific<std::vector<Keyed>> scratch;
   auto sort_bucket = [&](uint32_t a, std::vector<Keyed>& ks) {
     ks.clear();
@@ -142,8 +142,8 @@ Topology build_topology(const TetMesh& m) {
   topo.num_boundary_faces = boundary.combine(std::plus<size_t>());
   for (const auto& v : nonmanifold) topo.nonmanifold_faces.insert(topo.nonmanifold_faces.end(), v.begin(), v.end());
   std::sort(topo.nonmanifold_faces.begin(), topo.nonmanifold_faces.end());
-  std::vector<uint32_t>().swap(recs);
-  std::vector<uint8_t>().swap(first);
+  UninitVector<uint32_t>().swap(recs);
+  UninitVector<uint8_t>().swap(first);
 
   topo.tet_degenerate.resize(nt);
   tbb::combinable<size_t> nonfinite;

@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "base/util/uninit_vector.h"
 #include "geometry/tets/tet_mesh.h"
 
 namespace zs {
@@ -36,7 +37,7 @@ struct Topology {
   // Unique faces in the order of their sorted vertex triples. Faces shared by
   // more than two tets (non-manifold) keep the first two (lowest tet ids)
   // and are listed in `nonmanifold_faces`.
-  std::vector<FaceTets> face_tets;
+  UninitVector<FaceTets> face_tets;  // written in full by the build
   std::vector<uint32_t> nonmanifold_faces;
   size_t num_boundary_faces = 0;
   // Per tet, whether it is degenerate whatever the view and transfer

@@ -66,7 +66,7 @@ struct Dropped {
 SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv, const std::vector<FaceClass>& cls,
                        const std::vector<uint8_t>& done, const std::vector<SweepEvent>& events,
                        const std::vector<NearTriangle>& near, double z_origin, const ScreenTiling& tiling,
-                       std::vector<SweepItem> storage, std::vector<uint32_t>* words) {
+                       UninitVector<SweepItem> storage, UninitVector<uint32_t>* words) {
   SweepItems it;
   it.items = std::move(storage);
   it.items.clear();
@@ -111,8 +111,8 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
   // Per face: its rank (kDropped: left out) and its single tile, found here
   // once rather than again in the scattered fill below; two words a face, in
   // the caller's array when it gives one (it becomes the bins' next).
-  std::vector<uint32_t> own;
-  std::vector<uint32_t>& keys = words ? *words : own;
+  UninitVector<uint32_t> own;
+  UninitVector<uint32_t>& keys = words ? *words : own;
   if (keys.size() < 2 * size_t(nf)) keys.resize(2 * size_t(nf));
   uint32_t* key = keys.data();
   std::vector<uint64_t> at(chunks * nb, 0);  // chunk c's entries in bucket b: at[c * nb + b]
@@ -167,7 +167,7 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
       it.items[pos[rk >> shift]++] = {f, std::bit_cast<float>(rk), key[2 * size_t(f) + 1]};
     }
   });
-  std::vector<uint32_t>().swap(own);
+  UninitVector<uint32_t>().swap(own);
   std::vector<uint64_t>().swap(at);
   // Each bucket: a stable counting sort by rank through a per-thread buffer,
   // with the plane's depth written in place of the rank.

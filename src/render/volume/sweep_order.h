@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/util/uninit_vector.h"
 #include "geometry/tets/topology.h"
 #include "raster/screen_triangle.h"
 #include "render/volume/face_classes.h"
@@ -47,7 +48,7 @@ constexpr uint32_t kManyTiles = UINT32_MAX;
 struct SweepItems {
   // Near-plane triangles first (they start at z_near, before every vertex),
   // then faces in projection order.
-  std::vector<SweepItem> items;
+  UninitVector<SweepItem> items;
   uint64_t degenerate = 0;  // faces left out: zero screen area (seen edge-on), no fragments
   uint64_t offscreen = 0;   // faces left out: no pixel centre of the image inside their box
   size_t size() const { return items.size(); }
@@ -63,7 +64,7 @@ struct SweepItems {
 SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv, const std::vector<FaceClass>& cls,
                        const std::vector<uint8_t>& done, const std::vector<SweepEvent>& events,
                        const std::vector<NearTriangle>& near, double z_origin, const ScreenTiling& tiling,
-                       std::vector<SweepItem> storage = {}, std::vector<uint32_t>* words = nullptr);
+                       UninitVector<SweepItem> storage = {}, UninitVector<uint32_t>* words = nullptr);
 
 // An item's screen triangle: a face's vertices in ascending id order.
 inline void item_triangle(const SweepItems& items, size_t k, const Topology& topo, const std::vector<ScreenVertex>& sv,

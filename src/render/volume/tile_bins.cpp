@@ -8,7 +8,7 @@
 namespace zs {
 
 TileBins bin_items(const SweepItems& items, const Topology& topo, const std::vector<ScreenVertex>& sv,
-                   const std::vector<NearTriangle>& near, const ScreenTiling& t, std::vector<uint32_t> storage) {
+                   const std::vector<NearTriangle>& near, const ScreenTiling& t, UninitVector<uint32_t> storage) {
   TileBins b;
   b.items = std::move(storage);  // memory already mapped, when given
   b.cols = (t.width + t.tile - 1) / t.tile;

@@ -19,8 +19,8 @@ namespace zs {
 struct ViewBuffers {
   std::vector<ScreenVertex> sv;
   std::vector<FaceClass> cls;
-  std::vector<SweepItem> items;
-  std::vector<uint32_t> words;  // two per face (the order's keys), then the bins' entries
+  UninitVector<SweepItem> items;
+  UninitVector<uint32_t> words;  // two per face (the order's keys), then the bins' entries
 };
 
 }  // namespace zs
