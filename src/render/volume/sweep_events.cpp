@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include <tbb/blocked_range.h>
+
+#include "base/util/chunk_offsets.h"
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
@@ -48,17 +50,7 @@ std::vector<SweepKey> sorted_events(const std::vector<SweepEvent>& events) {
     uint64_t* count = at.data() + c * kBuckets;
     for (size_t i = c * kChunk, end = std::min(n, i + kChunk); i < end; ++i) ++count[bucket(events[i].z)];
   });
-  std::vector<uint64_t> start(kBuckets + 1);
-  uint64_t run = 0;
-  for (size_t b = 0; b < kBuckets; ++b) {
-    start[b] = run;
-    for (size_t c = 0; c < chunks; ++c) {
-      const uint64_t k = at[c * kBuckets + b];
-      at[c * kBuckets + b] = run;
-      run += k;
-    }
-  }
-  start[kBuckets] = run;
+  const std::vector<uint64_t> start = chunk_offsets(at, chunks, kBuckets);
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
     uint64_t* pos = at.data() + c * kBuckets;
     for (size_t i = c * kChunk, end = std::min(n, i + kChunk); i < end; ++i)

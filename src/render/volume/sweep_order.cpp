@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include <tbb/blocked_range.h>
+
+#include "base/util/chunk_offsets.h"
 #include <tbb/combinable.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -145,19 +147,8 @@ SweepItems sweep_order(const Topology& topo, const std::vector<ScreenVertex>& sv
     it.offscreen += d.offscreen;
   });
   // Bucket-major, then chunk: where chunk c's entries of bucket b start.
-  const size_t base = it.size();
-  std::vector<uint64_t> bucket_start(nb + 1);
-  uint64_t run = base;
-  for (size_t b = 0; b < nb; ++b) {
-    bucket_start[b] = run;
-    for (size_t c = 0; c < chunks; ++c) {
-      const uint64_t n = at[c * nb + b];
-      at[c * nb + b] = run;
-      run += n;
-    }
-  }
-  bucket_start[nb] = run;
-  it.items.resize(run);
+  const std::vector<uint64_t> bucket_start = chunk_offsets(at, chunks, nb, it.size());
+  it.items.resize(bucket_start[nb]);
   // The scatter carries each face's rank in place of its plane depth.
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
     uint64_t* pos = at.data() + c * nb;

@@ -5,6 +5,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "base/util/chunk_offsets.h"
+
 namespace zs {
 
 TileBins bin_items(const SweepItems& items, const Topology& topo, const std::vector<ScreenVertex>& sv,
@@ -37,18 +39,8 @@ TileBins bin_items(const SweepItems& items, const Topology& topo, const std::vec
     }
   };
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) { each(c, [](uint64_t& count, uint32_t) { ++count; }); });
-  b.offset.assign(tiles + 1, 0);
-  uint64_t run = 0;
-  for (size_t tile = 0; tile < tiles; ++tile) {
-    b.offset[tile] = run;
-    for (size_t c = 0; c < chunks; ++c) {
-      const uint64_t count = at[c * tiles + tile];
-      at[c * tiles + tile] = run;  // where chunk c's entries of this tile start
-      run += count;
-    }
-  }
-  b.offset[tiles] = run;
-  b.items.resize(run);  // every entry is written below
+  b.offset = chunk_offsets(at, chunks, tiles);  // at: where chunk c's entries of each tile start
+  b.items.resize(b.offset[tiles]);  // every entry is written below
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) { each(c, [&](uint64_t& pos, uint32_t k) { b.items[pos++] = k; }); });
   return b;
 }
