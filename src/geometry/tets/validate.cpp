@@ -107,11 +107,11 @@ size_t count_nonfinite_tets(const TetMesh& m) {
   // On the caller's TBB arena. Points first: with every point finite (the
   // usual case) no tet can be otherwise, and the pass over the tets, five
   // times the bytes and scattered, is skipped.
+  auto bad = [&](size_t v) { return !finite3(m.points[v]) || (m.has_scalars() && !std::isfinite(m.scalars[v])); };
   const size_t bad_points = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, m.points.size(), 1 << 16), size_t(0),
       [&](const tbb::blocked_range<size_t>& r, size_t n) {
-        for (size_t v = r.begin(); v < r.end(); ++v)
-          n += !finite3(m.points[v]) || (m.has_scalars() && !std::isfinite(m.scalars[v]));
+        for (size_t v = r.begin(); v < r.end(); ++v) n += bad(v);
         return n;
       },
       std::plus<size_t>());
@@ -120,11 +120,7 @@ size_t count_nonfinite_tets(const TetMesh& m) {
       tbb::blocked_range<size_t>(0, m.tets.size(), 1 << 14), size_t(0),
       [&](const tbb::blocked_range<size_t>& r, size_t n) {
         for (size_t t = r.begin(); t < r.end(); ++t)
-          for (uint32_t v : m.tets[t])
-            if (!finite3(m.points[v]) || (m.has_scalars() && !std::isfinite(m.scalars[v]))) {
-              ++n;
-              break;
-            }
+          n += std::any_of(m.tets[t].begin(), m.tets[t].end(), bad);
         return n;
       },
       std::plus<size_t>());

@@ -5,12 +5,12 @@
 #include <cmath>
 
 #include <tbb/blocked_range.h>
-
-#include "base/util/chunk_offsets.h"
 #include <tbb/combinable.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+
+#include "base/util/chunk_offsets.h"
 
 namespace zs {
 
