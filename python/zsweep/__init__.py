@@ -59,7 +59,7 @@ def _vtk_numpy(arr):
     return vtk_to_numpy(arr)
 
 
-def _grid_arrays(grid, scalar=None):
+def _grid_arrays(grid, scalar=None, association="auto"):
     """A VTK dataset's cells as arrays (numpy views of VTK's own where it can)."""
     if not grid.IsA("vtkDataSet"):
         raise ValueError("mesh: a %s is not a VTK dataset" % grid.GetClassName())
@@ -77,30 +77,37 @@ def _grid_arrays(grid, scalar=None):
         "offsets": _vtk_numpy(cells.GetOffsetsArray()),
         "connectivity": _vtk_numpy(cells.GetConnectivityArray()),
         "types": _vtk_numpy(grid.GetCellTypesArray()),
+        "association": association,
     }
     # The scalar as the .vtu reader picks it: the named array (point data
     # first, then cell data), else the active point scalar, else the first
-    # one-component point array; cell data (averaged onto the points by the
-    # reader's own code) only when the grid has no usable point array; and
-    # when that default is constant, the first array that varies.
-    key, a = _pick_scalar(grid.GetPointData(), grid.GetCellData(), scalar)
+    # one-component point array; cell data only when the grid has no usable
+    # point array; and when that default is constant, the first array that
+    # varies — among the arrays the association allows. Cell data stay per
+    # cell unless the association is "cell_to_point".
+    key, a = _pick_scalar(grid.GetPointData(), grid.GetCellData(), scalar, association)
     if a is not None:
         out[key] = _values(a)
     return out
 
 
-def _pick_scalar(pd, cd, name):
+def _pick_scalar(pd, cd, name, association="auto"):
     def names(attrs):
         return [attrs.GetArrayName(i) or "?" for i in range(attrs.GetNumberOfArrays())]
 
+    kinds = [(k, a) for k, a in (("scalar", pd), ("cell_scalar", cd))
+             if not (k == "scalar" and association == "cell") and not (k == "cell_scalar" and association == "point")]
     if name:
-        for key, attrs in (("scalar", pd), ("cell_scalar", cd)):
+        for key, attrs in kinds:
             if attrs.GetArray(name) is not None:
                 return key, attrs.GetArray(name)
+        for key, attrs in (("point", pd), ("cell", cd)):
+            if attrs.GetArray(name) is not None:
+                raise ValueError("mesh: array '%s' is %s data, and association is '%s'" % (name, key, association))
         raise ValueError("mesh: no point or cell array '%s' (point arrays: %s; cell arrays: %s)"
                          % (name, ", ".join(names(pd)) or "none", ", ".join(names(cd)) or "none"))
     default = ("scalar", None)
-    for key, attrs in (("scalar", pd), ("cell_scalar", cd)):
+    for key, attrs in kinds:
         if attrs.GetScalars() is not None:
             default = key, attrs.GetScalars()
             break
@@ -112,7 +119,7 @@ def _pick_scalar(pd, cd, name):
     # A constant default (a uniform field) gives way to the first array that
     # varies, point data first, as the readers choose (docs/scene.md).
     if default[1] is not None and not _varies(default[1]):
-        for key, attrs in (("scalar", pd), ("cell_scalar", cd)):
+        for key, attrs in kinds:
             for i in range(attrs.GetNumberOfArrays()):
                 c = attrs.GetArray(i)
                 if c is not None and c.GetName() and c.GetNumberOfComponents() > 0 and _varies(c):
@@ -159,12 +166,17 @@ def _mesh_data(v):
         rest = {k: x for k, x in v.items() if k not in ("data", "path")}
         d = v["data"] if "data" in v else v["path"]
         scalar = rest.pop("scalar", None)
+        association = rest.pop("association", None)
+        if association is not None and association not in ("auto", "point", "cell", "cell_to_point"):
+            raise ValueError('mesh: association must be "auto", "point", "cell" or "cell_to_point"')
         if isinstance(d, dict):
             arrays = dict(d)
             if scalar is not None and scalar != "scalar":
                 raise ValueError("mesh: 'scalar' names a VTK point array; give numpy data its 'scalar' array")
+            if association is not None:
+                arrays["association"] = association
         elif _is_vtk(d):
-            arrays = _grid_arrays(d, scalar)
+            arrays = _grid_arrays(d, scalar, association or "auto")
         else:
             raise ValueError("mesh: data must be a dict of numpy arrays or a VTK dataset")
         return arrays, rest

@@ -109,7 +109,7 @@ struct Scope {
 // Options of render/reference (and the Python module's keywords) that apply
 // to some input kinds only. Options not here apply to every kind.
 constexpr Scope kScopes[] = {
-    {"--q", kV},          {"--scalar", kV},       {"--scan", kV},
+    {"--q", kV},          {"--scalar", kV},       {"--association", kV},  {"--scan", kV},
     {"--variant", kV},    {"--integrator", kV},   {"--precision", kV},
     {"--early-termination", kV}, {"--max-list-length", kV},
     {"--no-culling", kS | kF}, {"--ao-samples", kS},

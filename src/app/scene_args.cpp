@@ -37,7 +37,10 @@ void SceneArgs::add_options(CLI::App& cmd, bool engine_knobs) {
   cmd.add_option("--threads", threads, "Threads (default: every core); images are identical for any count")
       ->check(range("--threads"));
   cmd.add_option("--q", opt.q_path, "PLOT3D solution file (PLOT3D grid input)");
-  cmd.add_option("--scalar", opt.scalar, "Point array or PLOT3D function (mesh file input)");
+  cmd.add_option("--scalar", opt.scalar, "Point or cell array, or PLOT3D function (mesh file input)");
+  cmd.add_option("--association", association,
+                 "Where the scalar lives (mesh file input): auto (as stored; default), point, cell, or "
+                 "cell_to_point (cell data averaged onto the points)");
   cmd.add_option("--width", width, "Override image width")->check(range("--width"));
   cmd.add_option("--height", height, "Override image height")->check(range("--height"));
   cmd.add_option("--projection", projection, "Automatic camera: orthographic (default) or perspective");
@@ -75,9 +78,15 @@ void SceneArgs::check_before_load() const {
                      std::filesystem::path(input).extension().string() + " mesh");
 }
 
+ReadOptions SceneArgs::read_options() const {
+  ReadOptions o = opt;
+  if (!association.empty()) parse_association(association, &o.association);  // checked by check()
+  return o;
+}
+
 SceneInput SceneArgs::load() const {
   check_before_load();  // before any file is read
-  SceneInput in = load_scene_input(input, opt, molecule);
+  SceneInput in = load_scene_input(input, read_options(), molecule);
   apply(in);
   return in;
 }
@@ -89,6 +98,7 @@ std::vector<std::string> SceneArgs::given() const {
   };
   add(!opt.q_path.empty(), "--q");
   add(!opt.scalar.empty(), "--scalar");
+  add(!association.empty(), "--association");
   add(!scan.empty(), "--scan");
   add(!variant.empty(), "--variant");
   add(!integrator.empty(), "--integrator");
@@ -102,10 +112,13 @@ std::vector<std::string> SceneArgs::given() const {
 }
 
 RenderSettings SceneArgs::check() const {
-  auto name = [&](const char* o) { return option_name(o, python); };
+  auto name = [&](const std::string& o) { return option_name(o, python); };
   if (!projection.empty() && projection != "perspective" && projection != "orthographic")
     throw UsageError(name("--projection") + " must be orthographic or perspective");
   RenderSettings knobs;
+  ScalarAssociation a;
+  if (!association.empty() && !parse_association(association, &a))
+    throw UsageError(name("--association") + " must be auto, point, cell or cell_to_point");
   if (!scan.empty() && !parse_scan_strategy(scan, &knobs.scan))
     throw UsageError(name("--scan") + " must be bbox, bconvert or span");
   if (!variant.empty() && !parse_bconvert_variant(variant, &knobs.bconvert_variant))
@@ -120,16 +133,18 @@ RenderSettings SceneArgs::check() const {
 void SceneArgs::apply(SceneInput& in, const std::string& input_name) const {
   const RenderSettings knobs = check();
   const std::string who = !input_name.empty() ? input_name : !input.empty() ? input : "the default scene";
-  auto name = [&](const char* o) { return option_name(o, python); };
+  auto name = [&](const std::string& o) { return option_name(o, python); };
   // Options that do not apply to this input would be ignored without a word.
   check_option_scope(given(), in.scene.kind, who, python,
                      in.scene.kind == SceneKind::Spheres && is_molecule_file(in.scene.spheres.path));
   const bool bare_mesh = !input.empty() && in.scene.kind == SceneKind::Volume && in.scene.mesh_path == input;
-  if ((!opt.scalar.empty() || !opt.q_path.empty()) && !bare_mesh)
-    throw UsageError(who + ": " + name(!opt.scalar.empty() ? "--scalar" : "--q") + " applies to a mesh file; " +
-                             (in.scene.mesh_path.empty() ? std::string("this scene has none")
-                                                         : "a scene names it as mesh." +
-                                                               std::string(!opt.scalar.empty() ? "scalar" : "q")));
+  const char* mesh_opt = !opt.scalar.empty() ? "scalar" : !association.empty() ? "association"
+                         : !opt.q_path.empty()  ? "q"
+                                                : nullptr;
+  if (mesh_opt && !bare_mesh)
+    throw UsageError(who + ": " + name("--" + std::string(mesh_opt)) + " applies to a mesh file; " +
+                     (in.scene.mesh_path.empty() ? std::string("this scene has none")
+                                                 : "a scene names it as mesh." + std::string(mesh_opt)));
   if (!projection.empty() && in.scene.has_camera)
     throw UsageError(who + ": " + name("--projection") +
                              " applies to the automatic camera, and this scene has its own");

@@ -29,6 +29,7 @@ const NumberRange& scene_number_range(const std::string& option);
 struct SceneArgs {
   std::string input;
   ReadOptions opt;
+  std::string association;  // --association (mesh file input), parsed into opt.association by load()
   int threads = 0;  // 0 = every core
   uint32_t width = 0, height = 0;
   std::string projection;
@@ -47,6 +48,8 @@ struct SceneArgs {
   void add_options(CLI::App& cmd, bool engine_knobs);
   // Loads the input and applies every override; camera and TF are complete.
   SceneInput load() const;
+  // The mesh options with --association parsed (check() refuses a bad one).
+  ReadOptions read_options() const;
   // The checks that need no file read: the knobs' names, and for a bare
   // file, the options that do not apply to its kind (by its name), so a
   // large input is not read only to be refused. apply() checks again.

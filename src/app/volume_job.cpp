@@ -27,7 +27,7 @@ class VolumeJob : public SceneJob {
     const TetMesh& m = in.mesh;
     // Refused before anything is built when the mesh cannot fit the budget
     // (the kernel would otherwise kill the process halfway).
-    const VolumeMemory need = estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars());
+    const VolumeMemory need = estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars(), 0, m.has_cell_scalars());
     if (need.peak() > rs_.budget())
       throw std::runtime_error((in.scene.mesh_path.empty() ? std::string() : in.scene.mesh_path + ": ") +
                                "memory budget of " + bytes_str(rs_.budget()) + " cannot hold this mesh: " +
@@ -42,7 +42,8 @@ class VolumeJob : public SceneJob {
     grid_ = TileGrid{rs_.width, rs_.height, rs_.tile_size};
     // What every frame shares is counted against the budget with the
     // caller's own bytes.
-    held_ = estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars(), topo_.num_faces());
+    held_ = estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars(), topo_.num_faces(),
+                                   m.has_cell_scalars());
   }
   bool set_camera(const Camera& camera) override {
     rs_.camera = camera;
@@ -114,6 +115,7 @@ nlohmann::json VolumeJob::stats(const TiledRenderer& r, const FrameReport& f) co
       {"faces_clipped", S.faces_clipped},
       {"tets_invisible", S.tets_invisible},
       {"tets_degenerate", S.tets_degenerate},
+      {"cell_data_tets", S.cell_data_tets},
       {"max_list_length", S.max_list_length},
       {"forced_composites", S.forced_composites},
       {"budget_flushes", S.budget_flushes},
@@ -129,6 +131,7 @@ nlohmann::json VolumeJob::stats(const TiledRenderer& r, const FrameReport& f) co
         {"tets", m.num_tets()},
         {"tets_nonfinite", nonfinite_tets_},  // left out of the render
         {"scalar", m.scalar_name},
+        {"association", m.has_cell_scalars() ? "cell" : m.has_scalars() ? "point" : "none"},
         {"scalar_choice", m.scalar_choice}}},  // why the reader chose it ("" when it was its default or named)
       {"image", {{"width", scene.settings.width}, {"height", scene.settings.height}}},
       {"scan", to_string(scene.settings.scan)},

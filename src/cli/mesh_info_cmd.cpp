@@ -51,7 +51,7 @@ struct InfoArgs {
 
 // What a volume render of this mesh holds (volume_memory.h).
 VolumeMemory memory_of(const TetMesh& m, const Topology& t) {
-  return estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars(), t.num_faces());
+  return estimate_volume_memory(m.num_points(), m.num_tets(), m.has_scalars(), t.num_faces(), m.has_cell_scalars());
 }
 
 void print_text(const std::string& name, const TetMesh& m, const Topology& t, const ValidationReport& r,
@@ -77,9 +77,10 @@ void print_text(const std::string& name, const TetMesh& m, const Topology& t, co
   line("non-finite points:", n(r.nonfinite_points));
   line("non-manifold faces:", n(r.nonmanifold_faces));
   line("coincident boundary faces:", n(r.coincident_boundary_faces));
-  if (m.has_scalars()) {
-    std::snprintf(buf, sizeof buf, "%s, range [%.9g, %.9g], %zu non-finite",
-                  m.scalar_name.empty() ? "(unnamed)" : m.scalar_name.c_str(), scalar_lo, scalar_hi,
+  if (!m.scalar_values().empty()) {
+    std::snprintf(buf, sizeof buf, "%s%s, range [%.9g, %.9g], %zu non-finite",
+                  m.scalar_name.empty() ? "(unnamed)" : m.scalar_name.c_str(),
+                  m.has_cell_scalars() ? " (cell data: one value per tet)" : "", scalar_lo, scalar_hi,
                   r.nonfinite_scalars);
     line("scalar:", buf);
   } else {
@@ -120,8 +121,12 @@ void print_json(const std::string& name, const TetMesh& m, const Topology& t, co
       {"zero_volume_eps", r.zero_volume_eps},
       {"volume", r.volume},
       {"bounds", {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}}},
-      {"scalar", m.has_scalars() ? nlohmann::json{{"name", m.scalar_name}, {"min", scalar_lo}, {"max", scalar_hi}}
-                                 : nlohmann::json(nullptr)},
+      {"scalar", !m.scalar_values().empty()
+                     ? nlohmann::json{{"name", m.scalar_name},
+                                      {"association", m.has_cell_scalars() ? "cell" : "point"},
+                                      {"min", scalar_lo},
+                                      {"max", scalar_hi}}
+                     : nlohmann::json(nullptr)},
       {"notes", m.notes},
       {"clean", r.clean()},
   };
@@ -166,7 +171,7 @@ void add_mesh_info_command(CLI::App& mesh) {
     const ValidationReport rep = validate(m, topo, args->eps);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (double s : m.scalars)
+    for (double s : m.scalar_values())
       if (std::isfinite(s)) lo = std::min(lo, s), hi = std::max(hi, s);
     if (args->json)
       print_json(args->src.display_name(), m, topo, rep, lo, hi);

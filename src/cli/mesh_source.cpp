@@ -20,17 +20,23 @@ void MeshSource::add_options(CLI::App& cmd, bool required) {
   if (required) o->required();
   cmd.add_option("--q", opt.q_path, "PLOT3D solution (q) file for a PLOT3D grid");
   cmd.add_option("--scalar", opt.scalar,
-                 "Point array to use (VTK), or PLOT3D function: density, velocity-magnitude, pressure, ...");
+                 "Point or cell array to use (VTK), or PLOT3D function: density, velocity-magnitude, pressure, ...");
+  cmd.add_option("--association", association,
+                 "Where the scalar lives: auto (as stored; default), point, cell, or cell_to_point (cell data "
+                 "averaged onto the points)");
 }
 
 TetMesh MeshSource::load() const {
   check_applies();
-  return path.empty() ? default_mesh() : read_mesh(path, opt);
+  ReadOptions o = opt;
+  if (!association.empty() && !parse_association(association, &o.association))
+    throw UsageError("--association must be auto, point, cell or cell_to_point");
+  return path.empty() ? default_mesh() : read_mesh(path, o);
 }
 
 void MeshSource::check_applies() const {
-  if (opt.scalar.empty() && opt.q_path.empty()) return;
-  const char* o = opt.scalar.empty() ? "--q" : "--scalar";
+  if (opt.scalar.empty() && opt.q_path.empty() && association.empty()) return;
+  const char* o = !opt.scalar.empty() ? "--scalar" : !association.empty() ? "--association" : "--q";
   if (path.empty()) throw UsageError(std::string(o) + " applies to a mesh file, not the embedded default mesh");
   if (is_sphere_file(path)) throw UsageError(path + ": " + o + " applies to tet meshes only, and this is a sphere set");
   if (is_surface_file(path))

@@ -39,9 +39,9 @@ void warn_nonfinite(const SceneInput& in) {
 // opacity: the image is a flat silhouette (the oxygen post's density).
 void warn_constant_scalar(const SceneInput& in) {
   const TetMesh& m = in.mesh;
-  if (!m.has_scalars()) return;
+  if (m.scalar_values().empty()) return;
   double lo = INFINITY, hi = -INFINITY;
-  for (double s : m.scalars)
+  for (double s : m.scalar_values())
     if (std::isfinite(s)) lo = std::min(lo, s), hi = std::max(hi, s);
   if (lo < hi || !(lo <= hi)) return;
   const std::string name = in.scene.mesh_path.empty() ? "default mesh" : in.scene.mesh_path;

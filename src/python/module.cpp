@@ -154,6 +154,7 @@ Options options_from(const py::dict& o) {
     else if (k == "max_list_length") a.max_list_length = int64_t(scene_number("--max-list-length"));
     else if (k == "tile_size") a.tile_size = uint32_t(scene_number("--tile-size"));
     else if (k == "scalar") a.opt.scalar = v.cast<std::string>();
+    else if (k == "association") a.association = v.cast<std::string>();
     else if (k == "q") a.opt.q_path = v.cast<std::string>();
     else if (k == "model") a.molecule.model = model_number(v);
     else if (k == "waters") a.molecule.no_waters = !flag(v, k);
@@ -177,7 +178,7 @@ std::unique_ptr<SceneInput> load(const std::string& text, const std::string& nam
     // for the embedded default scene, as on the command line.
     if (text.empty()) o.args.input = name;  // a bare file, as `zsweep render FILE`
     o.args.check_before_load();
-    *in = text.empty() ? load_scene_input(name, o.args.opt, o.args.molecule)
+    *in = text.empty() ? load_scene_input(name, o.args.read_options(), o.args.molecule)
                        : load_scene_input_text(text, name, base_dir, sd, o.args.molecule);
     o.args.apply(*in, name.empty() ? "the default scene" : name);
   });

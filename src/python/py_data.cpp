@@ -85,23 +85,45 @@ TetMesh tet_mesh_from(const pybind11::dict& d, const std::string& where) {
   const Array<double> pts = floats(get(d, "points", where, true), where, "points", 3);
   const int64_t n = pts.shape(0);
   if (n >= int64_t(UINT32_MAX)) bad(where, "too many points for 32-bit tet indices");
-  std::vector<double> scalars;
-  if (!get(d, "scalar", where, false).is_none()) {
-    const Array<double> s = floats(d["scalar"], where, "scalar", 0, n);
-    scalars.assign(s.data(), s.data() + s.size());
+  ScalarAssociation assoc = ScalarAssociation::Auto;
+  if (!get(d, "association", where, false).is_none()) {
+    const pybind11::object a = d["association"];
+    if (!pybind11::isinstance<pybind11::str>(a) || !parse_association(a.cast<std::string>(), &assoc))
+      bad(where, "'association' must be \"auto\", \"point\", \"cell\" or \"cell_to_point\"");
   }
   if (d.contains("tets")) {
     const Array<int64_t> t = indices(d["tets"], where, "tets", 4, n);
+    const int64_t nt = t.shape(0);
     TetMesh m;
+    if (!get(d, "scalar", where, false).is_none()) {
+      // One value per point is point data, one per tet cell data; when the
+      // counts are equal, point data unless the association says cell.
+      const Array<double> any = floats(d["scalar"], where, "scalar", 0);
+      const bool cell = assoc == ScalarAssociation::Cell || assoc == ScalarAssociation::CellToPoint ||
+                        (assoc == ScalarAssociation::Auto && any.shape(0) == nt && nt != n);
+      if (assoc == ScalarAssociation::Point && any.shape(0) != n)
+        bad(where, "'scalar' has " + std::to_string(any.shape(0)) + " values, and association 'point' needs one per "
+                   "point (" + std::to_string(n) + ")");
+      if (any.shape(0) != (cell ? nt : n))
+        bad(where, "'scalar' has " + std::to_string(any.shape(0)) + " values: one per point (" + std::to_string(n) +
+                       ") or one per tet (" + std::to_string(nt) + ")" +
+                       (cell && assoc != ScalarAssociation::Auto ? ", and the association needs one per tet" : ""));
+      (cell ? m.cell_scalars : m.scalars).assign(any.data(), any.data() + any.size());
+    }
     m.points = points_of(pts);
-    m.scalars = std::move(scalars);
     m.scalar_name = "scalar";
-    m.tets.resize(size_t(t.shape(0)));
+    m.tets.resize(size_t(nt));
     const int64_t* q = t.data();
     for (size_t i = 0; i < m.tets.size(); ++i)
       m.tets[i] = {uint32_t(q[4 * i]), uint32_t(q[4 * i + 1]), uint32_t(q[4 * i + 2]), uint32_t(q[4 * i + 3])};
     if (m.tets.empty()) bad(where, "'tets' is empty");
+    if (m.has_cell_scalars() && assoc == ScalarAssociation::CellToPoint) average_cell_scalars_onto_points(m);
     return m;
+  }
+  std::vector<double> scalars;
+  if (!get(d, "scalar", where, false).is_none()) {
+    const Array<double> s = floats(d["scalar"], where, "scalar", 0, n);
+    scalars.assign(s.data(), s.data() + s.size());
   }
   // VTK's cell arrays: offsets (cells + 1), connectivity, types (cells).
   const Array<int64_t> types = indices(get(d, "types", where, true), where, "types", 0, 256);
@@ -130,6 +152,7 @@ TetMesh tet_mesh_from(const pybind11::dict& d, const std::string& where) {
     vc.cell_scalars = cell_scalars.data();
     vc.cell_scalars_float = pybind11::isinstance<pybind11::array_t<float>>(d["cell_scalar"]);
   }
+  vc.association = assoc;
   try {
     return tet_mesh_from_cells(vc, where);
   } catch (const std::exception& e) {

@@ -11,10 +11,11 @@
 
 namespace zs::python {
 
-// {"points": (N,3), "tets": (M,4) int, "scalar": (N,)} (scalar optional);
-// or VTK's cells of an unstructured grid as arrays: {"points", "offsets",
-// "connectivity", "types", "scalar"}, split into tets as the .vtu reader
-// splits them.
+// {"points": (N,3), "tets": (M,4) int, "scalar": (N,) or (M,)} (scalar
+// optional; one value per tet is cell data); or VTK's cells of an
+// unstructured grid as arrays: {"points", "offsets", "connectivity",
+// "types", "scalar" or "cell_scalar"}, split into tets as the .vtu reader
+// splits them. "association" (optional): as a scene's mesh.association.
 TetMesh tet_mesh_from(const pybind11::dict& d, const std::string& where);
 // {"centers": (N,3), "radii": (N,), "colors": (N,3|4) in [0,1], "scalar": (N,)}
 // (colors and scalar optional; "centres" is accepted too).

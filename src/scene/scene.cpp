@@ -301,13 +301,17 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   } else if (m.is_string()) {
     s.mesh_path = c.resolve(m.get<std::string>());
   } else {
-    check_keys(c, m, "mesh", {"path", "scalar", "q"});
+    check_keys(c, m, "mesh", {"path", "scalar", "q", "association"});
     if (!m.contains("path") || !m["path"].is_string()) c.fail("mesh.path must be a string");
     s.mesh_path = c.resolve(m["path"].get<std::string>());
     if (m.contains("scalar")) {
       if (!m["scalar"].is_string()) c.fail("mesh.scalar must be a string");
       s.mesh_options.scalar = m["scalar"].get<std::string>();
     }
+    if (m.contains("association") &&
+        (!m["association"].is_string() ||
+         !parse_association(m["association"].get<std::string>(), &s.mesh_options.association)))
+      c.fail("mesh.association must be \"auto\", \"point\", \"cell\" or \"cell_to_point\"");
     if (m.contains("q")) {
       if (!m["q"].is_string()) c.fail("mesh.q must be a string");
       s.mesh_options.q_path = c.resolve(m["q"].get<std::string>());

@@ -64,7 +64,7 @@ TransferFunction default_transfer_function(const std::vector<double>& scalars, d
 
 TransferFunction default_transfer_function(const TetMesh& m) {
   // Unit distance: bounding diagonal / 50, from the half so it stays finite.
-  return default_transfer_function(m.scalars, std::max(bounds_of(m).half_diagonal() / 25.0, 1e-300));
+  return default_transfer_function(m.scalar_values(), std::max(bounds_of(m).half_diagonal() / 25.0, 1e-300));
 }
 
 }  // namespace zs

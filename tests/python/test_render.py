@@ -189,7 +189,7 @@ def test_surface_polydata_matches_obj_file(cli, tmp_path):
     ({"points": np.zeros((4, 3)), "tets": [[0, 1, 2]]}, "'tets' must have shape"),
     ({"points": np.zeros((4, 3)), "tets": [[0.5, 1, 2, 3]]}, "'tets' must be an integer array"),
     ({"points": np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, np.nan]]), "tets": [[0, 1, 2, 3]]}, "non-finite"),
-    ({"points": np.eye(4, 3), "tets": [[0, 1, 2, 3]], "scalar": np.zeros(3)}, "'scalar' has 3 rows"),
+    ({"points": np.eye(4, 3), "tets": [[0, 1, 2, 3]], "scalar": np.zeros(3)}, "'scalar' has 3 values"),
     ({"points": np.eye(4, 3), "tets": [[0, 1, 2, 3]], "scalar": [0, 1, np.inf, 0]}, "non-finite"),
     ({"points": "abc", "tets": [[0, 1, 2, 3]]}, "'points' must be a numeric array"),
     ({"points": np.eye(4, 3), "offsets": [0, 3], "connectivity": [0, 1, 2], "types": [10]}, "has 3 points"),
@@ -336,6 +336,55 @@ def test_real_quadratic_grid_with_cell_data_matches_the_file(cli, tmp_path):
     scene = {"image": {"width": 64, "height": 48}}
     (tmp_path / "k.json").write_text(json.dumps(dict(scene, mesh=path)))
     ref, _ = cli(tmp_path / "k.json")
-    img, st = zsweep.render_stats(dict(scene, mesh=g))  # quadratic tets by their corners, cell data averaged
+    img, st = zsweep.render_stats(dict(scene, mesh=g))  # quadratic tets by their corners, cell data per tet
     assert st["mesh"]["tets"] == 56786
+    assert st["mesh"]["association"] == "cell" and st["cell_data_tets"] > 50000
     same(img, ref[:, :, :4])
+    # The old averaging on request, the same from the file and from the grid, and another image.
+    (tmp_path / "a.json").write_text(json.dumps(dict(scene, mesh={"path": path, "association": "cell_to_point"})))
+    ref_avg, _ = cli(tmp_path / "a.json")
+    avg, st_avg = zsweep.render_stats(dict(scene, mesh={"data": g, "association": "cell_to_point"}))
+    assert st_avg["mesh"]["association"] == "point" and st_avg["cell_data_tets"] == 0
+    same(avg, ref_avg[:, :, :4])
+    assert np.max(np.abs(avg - img)) > 0.01
+    same(zsweep.render(path, association="cell_to_point", width=64, height=48), ref_avg[:, :, :4])
+
+
+def test_numpy_scalar_per_tet_is_cell_data(cli, tmp_path):
+    m = zsweep.generate.grid(4, field="gaussians")
+    pts, tets = m["points"], m["tets"]
+    per_tet = m["scalar"][tets].mean(axis=1)
+    scene = dict(VOLUME, camera={"projection": "orthographic", "eye": [2, 1.5, 3], "target": [0, 0, 0],
+                                 "up": [0, 1, 0], "height": 3})
+    img, st = zsweep.render_stats(dict(scene, mesh={"points": pts, "tets": tets, "scalar": per_tet}))
+    assert st["mesh"]["association"] == "cell" and st["cell_data_tets"] > 0
+    assert st["cell_data_tets"] + st["tets_invisible"] + st["tets_degenerate"] == len(tets)
+    avg, st_avg = zsweep.render_stats(dict(scene, mesh={"points": pts, "tets": tets, "scalar": per_tet,
+                                                       "association": "cell_to_point"}))
+    assert st_avg["mesh"]["association"] == "point"
+    assert np.max(np.abs(avg - img)) > 0.01
+    # The same tets from a .vtu with the values as cell data, through the CLI.
+    g = vtk.vtkUnstructuredGrid()
+    p = vtkPoints()
+    p.SetData(numpy_to_vtk(np.ascontiguousarray(pts, dtype=np.float64), deep=True))
+    g.SetPoints(p)
+    from vtkmodules.vtkCommonCore import vtkIdTypeArray
+    from vtkmodules.vtkCommonDataModel import vtkCellArray
+    conn = numpy_to_vtk(np.ascontiguousarray(tets.reshape(-1), dtype=np.int64), deep=True,
+                        array_type=vtkIdTypeArray().GetDataType())
+    off = numpy_to_vtk(np.arange(0, 4 * len(tets) + 1, 4, dtype=np.int64), deep=True,
+                       array_type=vtkIdTypeArray().GetDataType())
+    cells = vtkCellArray()
+    cells.SetData(off, conn)
+    g.SetCells(10, cells)  # VTK_TETRA
+    v = numpy_to_vtk(np.ascontiguousarray(per_tet, dtype=np.float64), deep=True)
+    v.SetName("value")
+    g.GetCellData().SetScalars(v)
+    write_vtu(g, tmp_path / "cells.vtu")
+    (tmp_path / "c.json").write_text(json.dumps(dict(scene, mesh=str(tmp_path / "cells.vtu"))))
+    ref, _ = cli(tmp_path / "c.json")
+    same(img, ref[:, :, :4])
+    with pytest.raises(ValueError, match="one per point"):
+        zsweep.render(dict(scene, mesh={"points": pts, "tets": tets, "scalar": per_tet, "association": "point"}))
+    with pytest.raises(ValueError, match="one per point .* or one per tet"):
+        zsweep.render(dict(scene, mesh={"points": pts, "tets": tets, "scalar": per_tet[:-1]}))

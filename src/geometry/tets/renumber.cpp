@@ -96,8 +96,15 @@ RenumberStats renumber_for_locality(TetMesh& m) {
   }
   for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   std::vector<Tet> tets(nt);
-  for (const Tet& t : m.tets) tets[start[std::min<size_t>(std::min({t[0], t[1], t[2], t[3]}), nv - 1)]++] = t;
+  std::vector<double> cell(m.cell_scalars.size());  // cell data move with their tets
+  for (size_t i = 0; i < nt; ++i) {
+    const Tet& t = m.tets[i];
+    const size_t to = start[std::min<size_t>(std::min({t[0], t[1], t[2], t[3]}), nv - 1)]++;
+    tets[to] = t;
+    if (!cell.empty()) cell[to] = m.cell_scalars[i];
+  }
   m.tets.swap(tets);
+  m.cell_scalars.swap(cell);
   st.spread_after = id_spread(m);
   st.renumbered = true;
   char note[160];

@@ -1,6 +1,6 @@
 // The tetrahedral mesh every renderer starts from: positions, one scalar per
-// vertex, and four vertex indices per tet. Topology lives in topology.h and is
-// built once from this.
+// vertex (point data) or one per tet (cell data), and four vertex indices per
+// tet. Topology lives in topology.h and is built once from this.
 #pragma once
 
 #include <array>
@@ -16,7 +16,8 @@ using Tet = std::array<uint32_t, 4>;
 
 struct TetMesh {
   std::vector<glm::dvec3> points;
-  std::vector<double> scalars;  // one per point (empty = no scalar)
+  std::vector<double> scalars;       // one per point (empty = no point scalar)
+  std::vector<double> cell_scalars;  // one per tet: cell-centred data, constant in the tet (empty = none)
   std::vector<Tet> tets;
 
   std::string scalar_name;      // e.g. "density"; empty when unnamed
@@ -29,8 +30,16 @@ struct TetMesh {
 
   size_t num_points() const { return points.size(); }
   size_t num_tets() const { return tets.size(); }
+  // Point scalars; a mesh has at most one of point and cell scalars.
   bool has_scalars() const { return !scalars.empty(); }
+  bool has_cell_scalars() const { return !cell_scalars.empty(); }
+  // The scalar's values whichever their association (ranges, defaults).
+  const std::vector<double>& scalar_values() const { return cell_scalars.empty() ? scalars : cell_scalars; }
 };
+
+// Cell data -> point data: each point gets the mean of the values of the
+// tets that use it (points no tet uses: 0); notes it in m.notes.
+void average_cell_scalars_onto_points(TetMesh& m);
 
 // Six times the signed volume of tet t: (b-a) . ((c-a) x (d-a)).
 double signed_volume6(const TetMesh& m, const Tet& t);

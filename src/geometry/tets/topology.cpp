@@ -152,7 +152,7 @@ Topology build_topology(const TetMesh& m) {
     for (size_t t = r.begin(); t < r.end(); ++t) {
       const Tet& tet = tets[t];
       double l2 = 0;
-      bool finite = true;
+      bool finite = !m.has_cell_scalars() || std::isfinite(m.cell_scalars[t]);
       for (int a = 0; a < 4; ++a) {
         const glm::dvec3& p = m.points[tet[a]];
         const double s = m.has_scalars() ? m.scalars[tet[a]] : 0.0;

@@ -115,12 +115,14 @@ size_t count_nonfinite_tets(const TetMesh& m) {
         return n;
       },
       std::plus<size_t>());
-  if (bad_points == 0) return 0;
+  // Cell data: a tet whose own value is not finite.
+  auto bad_cell = [&](size_t t) { return m.has_cell_scalars() && !std::isfinite(m.cell_scalars[t]); };
+  if (bad_points == 0 && !m.has_cell_scalars()) return 0;
   return tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, m.tets.size(), 1 << 14), size_t(0),
       [&](const tbb::blocked_range<size_t>& r, size_t n) {
         for (size_t t = r.begin(); t < r.end(); ++t)
-          n += std::any_of(m.tets[t].begin(), m.tets[t].end(), bad);
+          n += bad_cell(t) || (bad_points && std::any_of(m.tets[t].begin(), m.tets[t].end(), bad));
         return n;
       },
       std::plus<size_t>());
@@ -131,7 +133,7 @@ ValidationReport validate(const TetMesh& m, const Topology& topo, double eps) {
   r.zero_volume_eps = eps;
   for (const auto& p : m.points)
     if (!finite3(p)) ++r.nonfinite_points;
-  for (double s : m.scalars)
+  for (double s : m.scalar_values())
     if (!std::isfinite(s)) ++r.nonfinite_scalars;
 
   std::vector<uint8_t> used(m.points.size(), 0);

@@ -52,7 +52,8 @@ Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const Fra
   const SolidFaces solid = build_solid_faces(mesh, topo);
   const BoundaryBins bins(mesh, topo, solid, view);
   const SegmentIntegrator integ(tf, Integrator::Exact);
-  if (mesh.scalars.size() != mesh.points.size()) throw std::invalid_argument("reference: mesh has no point scalars");
+  if (mesh.scalars.size() != mesh.points.size() && mesh.cell_scalars.size() != mesh.tets.size())
+    throw std::invalid_argument("reference: mesh has no point or cell scalars");
   Image img(rs.width, uint32_t(rows_wanted.size()));
   // Lengths below this are rounding, not geometry (a seam's exit and entry).
   const double eps = 1e-10 * std::max(bounds_of(mesh).diagonal(), 1e-300);

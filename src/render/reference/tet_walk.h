@@ -3,8 +3,9 @@
 // the barycentric coordinates are linear along the line,
 //   lambda_k(t) = lambda_k(o) + t · (grad lambda_k · d),
 // so the exit is the smallest t where a coordinate of a face the line is
-// leaving through reaches zero, and the scalar at any t is sum lambda_k s_k —
-// no projection, no screen space, nothing shared with the sweep.
+// leaving through reaches zero, and the scalar at any t is sum lambda_k s_k
+// (cell data: the tet's own value) — no projection, no screen space, nothing
+// shared with the sweep.
 #pragma once
 
 #include <array>
@@ -75,9 +76,13 @@ WalkResult walk_line(const TetMesh& m, const Topology& topo, const SolidFaces& s
     t1 = std::max(t1, t);
     const Tet& tv = m.tets[tet];
     double s0 = 0, s1 = 0;
-    for (int q = 0; q < 4; ++q) {
-      s0 += (lo[q] + t * dl[q]) * m.scalars[tv[q]];
-      s1 += (lo[q] + t1 * dl[q]) * m.scalars[tv[q]];
+    if (m.has_cell_scalars()) {
+      s0 = s1 = m.cell_scalars[tet];  // cell data: constant in the tet
+    } else {
+      for (int q = 0; q < 4; ++q) {
+        s0 += (lo[q] + t * dl[q]) * m.scalars[tv[q]];
+        s1 += (lo[q] + t1 * dl[q]) * m.scalars[tv[q]];
+      }
     }
     emit(WalkSegment{t, t1, s0, s1, tet});
     t = t1;

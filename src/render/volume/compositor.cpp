@@ -21,7 +21,8 @@ void Compositor::composite(PixelRecord& px, PixelLists& lists, float z_limit, in
     const uint32_t kind = px.kind(0);
     lists.drop_front(px, 1);
     if (px.inside > 0 && z > px.last_z) {
-      const SegmentLight seg = integ_.integrate(px.last_s, integ_.end(px.last_s), s, integ_.end(s),
+      const float s1 = held_ ? px.last_s : s;
+      const SegmentLight seg = integ_.integrate(px.last_s, integ_.end(px.last_s), s1, integ_.end(s1),
                                                 double(z - px.last_z) * len_factor);
       PixelLight& l = lights_[&px - records_];
       const double T = l.T;

@@ -26,9 +26,12 @@ class Compositor {
   // termination: nothing reads a pixel's colour before the tile ends),
   // segments are queued there and composited into lights[pixel] in order
   // when it fills or on flush().
+  // held: cell data — each segment's scalar is its front fragment's, held
+  // over the whole segment (the tet's own value; face_classes.h).
   Compositor(const View& view, const SegmentIntegrator& integ, double et_transmittance, SegmentBatch* batch,
-             PixelRecord* records, PixelLight* lights)
-      : view_(view), integ_(integ), et_(et_transmittance), batch_(batch), records_(records), lights_(lights) {}
+             PixelRecord* records, PixelLight* lights, bool held = false)
+      : view_(view), integ_(integ), et_(et_transmittance), batch_(batch), records_(records), lights_(lights),
+        held_(held) {}
   void flush() {
     if (batch_) batch_->flush(lights_);
   }
@@ -48,7 +51,7 @@ class Compositor {
         const float z = px.z[i];
         if (px.inside > 0 && z > px.last_z) {
           if (batch_->full()) batch_->flush(lights_);
-          batch_->push(pixel, px.last_s, px.s[i], double(z - px.last_z) * len_factor);
+          batch_->push(pixel, px.last_s, held_ ? px.last_s : px.s[i], double(z - px.last_z) * len_factor);
           ++segments_;
         }
         step_past(px, z, px.s[i], px.kind(i));
@@ -82,6 +85,7 @@ class Compositor {
   SegmentBatch* batch_;
   PixelRecord* records_;
   PixelLight* lights_;
+  bool held_;
   uint64_t segments_ = 0, terminated_ = 0;
 };
 

@@ -20,6 +20,7 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
                                       std::vector<uint8_t>* tet_visible, std::vector<uint8_t>* on_visible,
                                       std::vector<FaceClass> storage) {
   const size_t nt = m.num_tets();
+  const bool cell = m.has_cell_scalars();
   std::vector<uint8_t> visible(nt, 0);
   if (on_visible) on_visible->assign(m.num_points(), 0);
   tbb::combinable<FaceClassCounts> part;
@@ -30,18 +31,24 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
         ++c.tets_degenerate;
         continue;
       }
-      // The scalar range over the tet's vertices (no scalars: 0).
+      // The scalar range over the tet: its own value (cell data), else its
+      // vertices' (no scalars: 0).
       double lo = INFINITY, hi = -INFINITY;
-      for (uint32_t v : m.tets[t]) {
-        const double s = m.has_scalars() ? m.scalars[v] : 0.0;
-        lo = std::min(lo, s);
-        hi = std::max(hi, s);
+      if (cell) {
+        lo = hi = m.cell_scalars[t];
+      } else {
+        for (uint32_t v : m.tets[t]) {
+          const double s = m.has_scalars() ? m.scalars[v] : 0.0;
+          lo = std::min(lo, s);
+          hi = std::max(hi, s);
+        }
       }
       if (tf.transparent_over(lo, hi)) {
         ++c.tets_invisible;
         continue;
       }
       visible[t] = 1;
+      c.cell_data_tets += cell;
       if (on_visible)
         for (uint32_t v : m.tets[t]) std::atomic_ref<uint8_t>((*on_visible)[v]).store(1, std::memory_order_relaxed);
     }
@@ -61,31 +68,36 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
         ++c.faces_culled;
         continue;
       }
+      // Whether rays cross face f into tet t: they come from the eye's side of
+      // the face's plane (the eye itself, or against the view direction
+      // when orthographic) and enter t iff t lies on the other side.
+      auto entered = [&](uint32_t t) {
+        const auto fv = topo.face(f);
+        uint32_t opp = m.tets[t][0];
+        for (uint32_t v : m.tets[t])
+          if (v != fv[0] && v != fv[1] && v != fv[2]) opp = v;
+        const glm::dvec3 a = m.points[fv[0]];
+        const glm::dvec3 n = glm::cross(m.points[fv[1]] - a, m.points[fv[2]] - a);
+        const double side_tet = glm::dot(n, m.points[opp] - a);
+        const double side_eye = view.perspective() ? glm::dot(n, eye - a) : -glm::dot(n, fwd);
+        return (side_tet > 0) != (side_eye > 0);
+      };
       if (v0 && v1) {
-        cls[f] = FaceClass::Interior;
+        // Cell data: the value behind the face is tet1's when rays leave tet0 here.
+        cls[f] = cell && !entered(t0) ? FaceClass(uint8_t(FaceClass::Interior) | kValueTet1) : FaceClass::Interior;
         continue;
       }
-      // One visible side: find that tet's vertex off this face.
+      // One visible side: entry iff the rays enter that tet.
       const uint32_t t = v0 ? t0 : t1;
-      const auto fv = topo.face(f);
-      uint32_t opp = m.tets[t][0];
-      for (uint32_t v : m.tets[t])
-        if (v != fv[0] && v != fv[1] && v != fv[2]) opp = v;
-      const glm::dvec3 a = m.points[fv[0]];
-      const glm::dvec3 n = glm::cross(m.points[fv[1]] - a, m.points[fv[2]] - a);
-      const double side_tet = glm::dot(n, m.points[opp] - a);
-      // The side of the plane the rays come from: the eye (perspective), or
-      // against the view direction (orthographic).
-      const double side_eye = view.perspective() ? glm::dot(n, eye - a) : -glm::dot(n, fwd);
-      // Rays cross from the eye's side to the other: they enter the tet iff the
-      // tet is on the other side.
-      cls[f] = (side_tet > 0) != (side_eye > 0) ? FaceClass::Entry : FaceClass::Exit;
+      const FaceClass k = entered(t) ? FaceClass::Entry : FaceClass::Exit;
+      cls[f] = cell && t == t1 ? FaceClass(uint8_t(k) | kValueTet1) : k;
     }
   });
   part.combine_each([&](const FaceClassCounts& c) {
     counts->tets_invisible += c.tets_invisible;
     counts->tets_degenerate += c.tets_degenerate;
     counts->faces_culled += c.faces_culled;
+    counts->cell_data_tets += c.cell_data_tets;
   });
   if (tet_visible) *tet_visible = std::move(visible);
   return cls;

@@ -11,6 +11,12 @@
 //   exit     — one visible side, in front of the face.
 // Entry/exit drive the compositor's inside count (compositor.h), which keeps
 // gaps of non-convex meshes (and of invisible regions) dark.
+//
+// Cell data (one value per tet) are constant inside a tet and jump at its
+// faces. A fragment then carries the value of the tet the ray enters through
+// its face (for an exit face, the visible tet), and the compositor holds each
+// segment at its front fragment's value. The class byte says which of the
+// face's two tets that is (kValueTet1); with point data it is never set.
 #pragma once
 
 #include <cstddef>
@@ -25,11 +31,15 @@
 namespace zs {
 
 enum class FaceClass : uint8_t { Culled, Interior, Entry, Exit };
+constexpr uint8_t kValueTet1 = 4;  // cell data: the face's fragments take tet1's value (else tet0's)
+inline FaceClass base_class(FaceClass c) { return FaceClass(uint8_t(c) & 3); }
+inline bool value_from_tet1(FaceClass c) { return (uint8_t(c) & kValueTet1) != 0; }
 
 struct FaceClassCounts {
   uint64_t tets_invisible = 0;   // scalar range with zero opacity
   uint64_t tets_degenerate = 0;  // zero volume or non-finite
   uint64_t faces_culled = 0;
+  uint64_t cell_data_tets = 0;  // visible tets rendered with their own (cell) value
 };
 
 // tet_visible (optional) receives one byte per tet; on_visible (optional)

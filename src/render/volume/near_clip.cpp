@@ -74,6 +74,10 @@ void clip_at_near_plane(const TetMesh& m, const Topology& topo, const View& view
       if (!behind(a)) poly[n++] = sv[a];
       if (behind(a) != behind(b)) poly[n++] = pts.at(a, b);
     }
+    if (m.has_cell_scalars()) {  // cell data: the face's value (face_classes.h)
+      const double c = m.cell_scalars[value_from_tet1(cls[f]) ? topo.tet1(f) : topo.tet0(f)];
+      for (int k = 0; k < n; ++k) poly[k].s = c;
+    }
     emit_polygon(poly, n, cls[f], out);
   }
 
@@ -97,6 +101,8 @@ void clip_at_near_plane(const TetMesh& m, const Topology& topo, const View& view
         return std::atan2(a.y - cy, a.x - cx) < std::atan2(b.y - cy, b.x - cx);
       });
     }
+    if (m.has_cell_scalars())
+      for (int k = 0; k < n; ++k) cut[k].s = m.cell_scalars[t];
     emit_polygon(cut, n, FaceClass::Entry, out);
   }
 }

@@ -11,6 +11,7 @@ struct RenderStats {
   uint64_t pixel_tests = 0, pixel_hits = 0, pixel_misses = 0, fragments = 0, rendered_pixels = 0;
   uint64_t faces_projected = 0, faces_culled = 0, faces_offscreen = 0, faces_degenerate = 0, faces_clipped = 0;
   uint64_t tets_invisible = 0, tets_degenerate = 0;
+  uint64_t cell_data_tets = 0;  // visible tets carrying one (cell) value each
   uint64_t max_list_length = 0, forced_composites = 0, budget_flushes = 0;
   uint64_t composite_events = 0, segments = 0, early_terminated_pixels = 0;
   uint64_t peak_fragments = 0, peak_rss_bytes = 0, memory_budget_bytes = 0;

@@ -27,7 +27,7 @@ class TileSweep {
       : in_(in), rs_(in.rs), vp_(vp), vw_(uint32_t(vp.x1 - vp.x0)), ws_(ws), S_(S),
         npix_(size_t(vw_) * uint32_t(vp.y1 - vp.y0)), records_(prepare(ws, npix_)),
         comp_(in.view, in.integ, rs_.early_termination > 0 ? rs_.early_termination / 510.0 : 0.0,
-              batch_for(in, ws), records_, ws.light.data()),  // after prepare() has sized ws.light
+              batch_for(in, ws), records_, ws.light.data(), in.cell != nullptr),  // after prepare() sized ws.light
         timed_(rs_.phase_times) {
     ws.active.clear();
     ws.touched.clear();
@@ -88,6 +88,12 @@ class TileSweep {
       } else {
         for (int c = 0; c < 3; ++c) it.tri[c] = in_.sv[it.vid[c]];
         it.cls = in_.cls[it.id];
+        if (in_.cell) {
+          // Cell data: the face's value is its tet's (face_classes.h), one
+          // plane of constant scalar.
+          const double s = in_.cell[value_from_tet1(it.cls) ? in_.topo.tet1(it.id) : in_.topo.tet0(it.id)];
+          for (int c = 0; c < 3; ++c) it.tri[c].s = s;
+        }
       }
     }
   }
@@ -231,7 +237,8 @@ class TileSweep {
     S_.pixel_tests += sc.pixel_tests;
     S_.pixel_hits += sc.pixel_hits;
     S_.pixel_misses += sc.pixel_misses;
-    const uint32_t kind = fclass == FaceClass::Entry ? kEntry : fclass == FaceClass::Exit ? kExit : kInterior;
+    const FaceClass base = base_class(fclass);
+    const uint32_t kind = base == FaceClass::Entry ? kEntry : base == FaceClass::Exit ? kExit : kInterior;
     const double z_origin = in_.z_origin;
     if (timed_ || rs_.raster_only) {
       // The benchmarks' path: fragments first (timed as scan conversion), then insertion.

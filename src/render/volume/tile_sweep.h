@@ -38,6 +38,7 @@ struct SweepShared {
   SweepItems items;
   TileBins bins;
   double z_origin = 0;  // fragments store depth - z_origin
+  const double* cell = nullptr;  // cell data: one value per tet (face_classes.h); null for point data
 };
 
 // A bin entry staged for the sweep: its item with its screen triangle.

@@ -11,10 +11,11 @@ namespace zs {
 
 uint64_t VolumeMemory::peak() const { return mesh + std::max(topology_build, topology + per_view); }
 
-VolumeMemory estimate_volume_memory(uint64_t points, uint64_t tets, bool scalars, uint64_t faces) {
+VolumeMemory estimate_volume_memory(uint64_t points, uint64_t tets, bool scalars, uint64_t faces,
+                                    bool cell_scalars) {
   VolumeMemory m;
   m.tets = tets;
-  m.mesh = points * (24 + (scalars ? 8 : 0)) + tets * 16;
+  m.mesh = points * (24 + (scalars ? 8 : 0)) + tets * (16 + (cell_scalars ? 8 : 0));
   m.topology = faces ? faces * sizeof(FaceTets) + tets : topology_bytes(tets);
   m.topology_build = topology_build_peak_bytes(points, tets);
   if (!faces) faces = tets * 21 / 10;

@@ -13,7 +13,7 @@ namespace zs {
 
 struct VolumeMemory {
   uint64_t tets = 0;
-  uint64_t mesh = 0;            // points (and scalars) and tets
+  uint64_t mesh = 0;            // points and tets, with their scalars
   uint64_t topology = 0;        // kept for every frame
   uint64_t topology_build = 0;  // held while it is built, on top of the mesh
   uint64_t per_view = 0;        // one frame's set-up, on top of mesh and topology
@@ -22,7 +22,9 @@ struct VolumeMemory {
 };
 
 // faces = 0: estimated (2.1 per tet, a 5-tet grid split's ratio).
-VolumeMemory estimate_volume_memory(uint64_t points, uint64_t tets, bool scalars, uint64_t faces = 0);
+// scalars: point scalars; cell_scalars: one per tet.
+VolumeMemory estimate_volume_memory(uint64_t points, uint64_t tets, bool scalars, uint64_t faces = 0,
+                                    bool cell_scalars = false);
 
 // "2381.2 MiB at peak (mesh 915.5 MiB, topology 715.3 MiB, one view 750.4 MiB), 61 bytes per tet".
 std::string volume_memory_summary(const VolumeMemory& m);

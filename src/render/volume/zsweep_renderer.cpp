@@ -192,6 +192,7 @@ struct ZSweepRenderer::Impl {
     // Fragments store depth relative to the nearest vertex, as float: keeps
     // their precision when the camera is far from the mesh.
     in.z_origin = std::isfinite(zmin) ? zmin : 0.0;
+    in.cell = mesh.has_cell_scalars() ? mesh.cell_scalars.data() : nullptr;
 
     // Perspective rays start at the eye: keep a tiny positive near distance so
     // that projecting never divides by zero. Orthographic rays start on the eye plane.
@@ -211,6 +212,7 @@ struct ZSweepRenderer::Impl {
     S.tets_invisible = fc.tets_invisible;
     S.tets_degenerate = fc.tets_degenerate;
     S.faces_culled = fc.faces_culled;
+    S.cell_data_tets = fc.cell_data_tets;
     // The sweep's events: vertices in front of the near plane on a face that
     // is not culled.
     std::vector<SweepEvent> events;

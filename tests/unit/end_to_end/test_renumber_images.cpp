@@ -97,17 +97,36 @@ TEST(RenumberImages, BluntFin) {
   expect_same_images(read_mesh(xyz, {"density", q}), "blunt fin");
 }
 
+// kiefer's vertices tie in depth (point data averaged from its cells); as
+// cell data, the rays lying in a face between two cells (its planes of
+// symmetry, seen edge-on) may take the other cell's value when the ids
+// change (docs/scene.md), so a few pixels differ more.
 TEST(RenumberImages, KieferWithinTheStatedBound) {
   ZS_REQUIRE_SHARED(p, "kiefer.vtu");
-  const TetMesh m = read_mesh(p);
-  TetMesh r = m;
-  renumber_for_locality(r);
-  const TransferFunction tf = default_transfer_function(m);
-  const Camera cam = auto_camera(m, Projection::Orthographic, 96, 80);
-  const Image a = render(m, cam, tf), b = render(r, cam, tf);
-  double worst = 0;
-  for (size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, double(std::abs(a.rgba[i] - b.rgba[i])));
-  EXPECT_LE(worst, 1e-3);
+  for (ScalarAssociation assoc : {ScalarAssociation::CellToPoint, ScalarAssociation::Cell}) {
+    ReadOptions opt;
+    opt.association = assoc;
+    const TetMesh m = read_mesh(p, opt);
+    TetMesh r = m;
+    renumber_for_locality(r);
+    const TransferFunction tf = default_transfer_function(m);
+    const Camera cam = auto_camera(m, Projection::Orthographic, 96, 80);
+    const Image a = render(m, cam, tf), b = render(r, cam, tf);
+    double worst = 0;
+    size_t off = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) {
+      double d = 0;
+      for (int k = 0; k < 4; ++k) d = std::max(d, double(std::abs(a.rgba[i + k] - b.rgba[i + k])));
+      worst = std::max(worst, d);
+      off += d > 1e-3;
+    }
+    if (assoc == ScalarAssociation::CellToPoint) {
+      EXPECT_LE(worst, 1e-3);
+    } else {
+      EXPECT_LE(off, 12u) << "pixels differing by more than 1e-3, of " << a.rgba.size() / 4;
+      EXPECT_LE(worst, 0.02);
+    }
+  }
 }
 
 TEST(Renumber, SameTetsOverTheSamePoints) {

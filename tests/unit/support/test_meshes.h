@@ -69,6 +69,74 @@ inline double box_chord(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi
   return t1 > t0 ? t1 - t0 : 0;
 }
 
+// Entry and exit of the ray o + t·d (t > 0) in the box [lo, hi]; false if it
+// misses (the slab method, as box_chord).
+inline bool box_span(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi, double* t0, double* t1) {
+  *t0 = 0, *t1 = 1e300;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      continue;
+    }
+    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    *t0 = std::max(*t0, ta);
+    *t1 = std::min(*t1, tb);
+  }
+  return *t1 > *t0;
+}
+
+// Cell data in two regions: a box whose cells left of the plane x = x_mid
+// (a plane of cell boundaries) carry one value and the others another. The
+// closed form of a ray through it: two constant segments, front to back,
+// each I = c·(1 - T), T = exp(-tau·L) with tau = -ln(1 - a)/unit.
+struct TwoRegions {
+  glm::dvec3 lo{-1.0, -0.7, -0.5}, hi{1.0, 0.7, 0.5};
+  glm::ivec3 cells{6, 5, 4};
+  double value[2] = {0.25, 0.75};
+  double color[2][3] = {{0.9, 0.3, 0.1}, {0.1, 0.4, 0.95}};
+  double alpha[2] = {0.5, 0.15};
+  double unit = 0.8;
+  double x_mid() const { return lo.x + (hi.x - lo.x) * (cells.x / 2) / cells.x; }
+  TetMesh mesh() const {
+    TetMesh m = box_mesh(cells, lo, hi, [](const glm::dvec3&) { return 0.0; });
+    m.scalars.clear();
+    for (const Tet& t : m.tets) {
+      const double cx = (m.points[t[0]].x + m.points[t[1]].x + m.points[t[2]].x + m.points[t[3]].x) / 4;
+      m.cell_scalars.push_back(cx < x_mid() ? value[0] : value[1]);
+    }
+    return m;
+  }
+  TransferFunction tf() const {
+    return TransferFunction({{value[0], color[0][0], color[0][1], color[0][2]},
+                             {value[1], color[1][0], color[1][1], color[1][2]}},
+                            {{value[0], alpha[0]}, {value[1], alpha[1]}}, unit);
+  }
+  // Premultiplied RGBA of the ray o + t·d, t > 0 (transparent background).
+  void expected(glm::dvec3 o, glm::dvec3 d, double out[4]) const {
+    glm::dvec3 hi0 = hi, lo1 = lo;
+    hi0.x = lo1.x = x_mid();
+    struct Piece {
+      double t0, t1;
+      int r;
+    } p[2];
+    int n = 0;
+    double t0, t1;
+    if (box_span(o, d, lo, hi0, &t0, &t1)) p[n++] = {t0, t1, 0};
+    if (box_span(o, d, lo1, hi, &t0, &t1)) p[n++] = {t0, t1, 1};
+    if (n == 2 && p[1].t0 < p[0].t0) std::swap(p[0], p[1]);
+    double T = 1;
+    out[0] = out[1] = out[2] = 0;
+    for (int k = 0; k < n; ++k) {
+      const int r = p[k].r;
+      const double Tk = std::exp(std::log(1 - alpha[r]) / unit * (p[k].t1 - p[k].t0));
+      for (int c = 0; c < 3; ++c) out[c] += T * color[r][c] * (1 - Tk);
+      T *= Tk;
+    }
+    out[3] = 1 - T;
+  }
+};
+
 // The ray through pixel centre (i, j), straight from the scene spec (kept
 // independent of the renderers' View class on purpose).
 inline void spec_ray(const Camera& c, uint32_t W, uint32_t H, int i, int j, glm::dvec3* o, glm::dvec3* d) {

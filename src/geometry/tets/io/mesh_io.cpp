@@ -18,6 +18,42 @@ namespace zs {
 
 namespace fs = std::filesystem;
 
+const char* to_string(ScalarAssociation a) {
+  switch (a) {
+    case ScalarAssociation::Auto: return "auto";
+    case ScalarAssociation::Point: return "point";
+    case ScalarAssociation::Cell: return "cell";
+    case ScalarAssociation::CellToPoint: return "cell_to_point";
+  }
+  return "auto";
+}
+
+bool parse_association(const std::string& s, ScalarAssociation* out) {
+  for (ScalarAssociation a : {ScalarAssociation::Auto, ScalarAssociation::Point, ScalarAssociation::Cell,
+                              ScalarAssociation::CellToPoint})
+    if (s == to_string(a)) {
+      *out = a;
+      return true;
+    }
+  return false;
+}
+
+namespace {
+
+// A file with one scalar of a fixed association, read with opt.association.
+void apply_association(TetMesh& m, const ReadOptions& opt, const std::string& path) {
+  const std::string name = m.scalar_name.empty() ? "scalar" : m.scalar_name;
+  if (m.has_cell_scalars()) {
+    if (opt.association == ScalarAssociation::Point)
+      throw FileError(path, "scalar '" + name + "' is cell data, and association is 'point' (use 'cell' or 'cell_to_point')");
+    if (opt.association == ScalarAssociation::CellToPoint) average_cell_scalars_onto_points(m);
+  } else if (m.has_scalars() && opt.association == ScalarAssociation::Cell) {
+    throw FileError(path, "scalar '" + name + "' is point data, and association is 'cell'");
+  }
+}
+
+}  // namespace
+
 MeshFormat format_of(const std::string& path, const ReadOptions& opt) {
   const std::string e = lower_extension(path);
   if (e == ".off") return MeshFormat::Off;
@@ -48,7 +84,10 @@ TetMesh read_mesh(const std::string& path, const ReadOptions& opt) {
     const std::string have = m.scalar_name.empty() ? "scalar" : m.scalar_name;
     if (!opt.scalar.empty() && opt.scalar != have)
       throw FileError(path, "no array named '" + opt.scalar + "'; available: " +
-                                (m.has_scalars() ? have + " (point)" : std::string("none")));
+                                (m.has_scalars() ? have + " (point)"
+                                 : m.has_cell_scalars() ? have + " (cell)"
+                                                        : std::string("none")));
+    apply_association(m, opt, path);
     return m;
   }
   switch (format) {

@@ -7,15 +7,25 @@
 // Every failure is a zs::FileError whose message names the file.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "geometry/tets/tet_mesh.h"
 
 namespace zs {
 
+// Where the scalar lives. Auto: as the array is stored (point data stay on
+// the points, cell data on the tets, each tet keeping its cell's value);
+// Point / Cell: only arrays of that association; CellToPoint: point data as
+// stored, cell data averaged onto the points (vtkCellDataToPointData).
+enum class ScalarAssociation : uint8_t { Auto, Point, Cell, CellToPoint };
+const char* to_string(ScalarAssociation a);
+bool parse_association(const std::string& s, ScalarAssociation* out);
+
 struct ReadOptions {
-  std::string scalar;  // point array (or PLOT3D function) to use; "" = default
+  std::string scalar;  // array (or PLOT3D function) to use; "" = default
   std::string q_path;  // PLOT3D solution file; required for PLOT3D grids
+  ScalarAssociation association = ScalarAssociation::Auto;
 };
 
 enum class MeshFormat { Off, Zsm, Vtu, VtkLegacy, Plot3d, TetGen, Unknown };

@@ -263,6 +263,8 @@ TetMesh read_plot3d(const std::string& xyz_path, const ReadOptions& opt) {
   if (opt.q_path.empty())
     throw FileError(xyz_path, "PLOT3D grid needs its solution file (--q FILE)");
   require_file(opt.q_path, "solution");
+  if (opt.association == ScalarAssociation::Cell)
+    throw FileError(opt.q_path, "PLOT3D functions are point data, and association is 'cell'");
   const Function& fn0 = find_function(xyz_path, opt.scalar);
 
   if (!plausible_xyz(xyz_path))

@@ -25,14 +25,16 @@ struct VtkCells {
   const int64_t* types = nullptr;
   int64_t num_cells = 0;
   const double* scalars = nullptr;       // num_points values, or null
-  const double* cell_scalars = nullptr;  // else num_cells values averaged onto the points as the reader does, or null
+  const double* cell_scalars = nullptr;  // else num_cells values, or null
   bool cell_scalars_float = false;       // they came as float32: averaged in float, as the reader averages a file's
+  ScalarAssociation association = ScalarAssociation::Auto;  // as a file's (ReadOptions)
 };
 // The same tets read_vtk makes of a file with these cells; `name` stands for
 // the file in messages.
 TetMesh tet_mesh_from_cells(const VtkCells& cells, const std::string& name);
 
-// .vtu with the scalar as a point array named mesh.scalar_name (or "scalar").
+// .vtu with the scalar as a point (or cell) array named mesh.scalar_name (or
+// "scalar").
 void write_vtu(const std::string& path, const TetMesh& m);
 
 // PLOT3D grid + solution (big-endian binary, IBLANK honoured), each hex split

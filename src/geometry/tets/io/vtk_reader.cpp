@@ -1,9 +1,10 @@
 // read_vtk: any dataset VTK can read from .vtu / legacy .vtk -> linear tets.
 //
-// Pipeline: read -> pick one point scalar (cell data averaged onto points if
-// that is all there is) -> reduce higher-order 3-D cells to their corner nodes
-// -> split non-tet 3-D cells with vtkDataSetTriangleFilter -> drop points no
-// tet uses.
+// Pipeline: read -> pick one scalar (point data, or cell data kept per cell
+// unless averaged onto the points; vtk_scalar.h) -> reduce higher-order 3-D
+// cells to their corner nodes -> split non-tet 3-D cells with
+// vtkDataSetTriangleFilter (each tet keeps its cell's value) -> drop points
+// no tet uses.
 #include <vtkCell.h>
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
@@ -172,14 +173,24 @@ int cell_dimension(int type, std::map<int, int>& cache) {
 
 // Splits the cells of ug (already linear, sharing ds's point ids) into tets
 // with vtkDataSetTriangleFilter; ids map back through an id array so we do
-// not depend on the filter keeping point order.
+// not depend on the filter keeping point order. With `origin`, each tet's
+// cell id in `cell_ids` (the dataset's own numbering; the filter copies cell
+// data to the tets it makes) is appended to it.
 void triangulate(vtkDataSet* in, std::vector<Tet>& tets, const std::string& path,
-                 detail::VtkMessageCapture& capture) {
+                 detail::VtkMessageCapture& capture, const std::vector<vtkIdType>* cell_ids = nullptr,
+                 std::vector<vtkIdType>* origin = nullptr) {
   auto ids = vtkSmartPointer<vtkIdTypeArray>::New();
   ids->SetName("zs_original_id");
   ids->SetNumberOfValues(in->GetNumberOfPoints());
   for (vtkIdType i = 0; i < in->GetNumberOfPoints(); ++i) ids->SetValue(i, i);
   in->GetPointData()->AddArray(ids);
+  if (origin) {
+    auto cids = vtkSmartPointer<vtkIdTypeArray>::New();
+    cids->SetName("zs_original_cell");
+    cids->SetNumberOfValues(in->GetNumberOfCells());
+    for (vtkIdType i = 0; i < in->GetNumberOfCells(); ++i) cids->SetValue(i, cell_ids ? (*cell_ids)[size_t(i)] : i);
+    in->GetCellData()->AddArray(cids);
+  }
 
   auto tf = vtkSmartPointer<vtkDataSetTriangleFilter>::New();
   capture.watch(tf);
@@ -188,10 +199,13 @@ void triangulate(vtkDataSet* in, std::vector<Tet>& tets, const std::string& path
   tf->Update();
   vtkUnstructuredGrid* out = tf->GetOutput();
   in->GetPointData()->RemoveArray("zs_original_id");
+  if (origin) in->GetCellData()->RemoveArray("zs_original_cell");
   if (capture.has_error() || !out)
     throw FileError(path, "cannot split cells into tets: " + capture.first_error());
   auto* back = vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("zs_original_id"));
   if (!back) throw FileError(path, "cannot split cells into tets: point ids lost");
+  auto* cell_back = origin ? vtkIdTypeArray::SafeDownCast(out->GetCellData()->GetArray("zs_original_cell")) : nullptr;
+  if (origin && !cell_back) throw FileError(path, "cannot split cells into tets: cell ids lost");
   auto idlist = vtkSmartPointer<vtkIdList>::New();
   for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c) {
     if (out->GetCellType(c) != VTK_TETRA) continue;
@@ -199,6 +213,7 @@ void triangulate(vtkDataSet* in, std::vector<Tet>& tets, const std::string& path
     Tet t;
     for (int k = 0; k < 4; ++k) t[k] = static_cast<uint32_t>(back->GetValue(idlist->GetId(k)));
     tets.push_back(t);
+    if (origin) origin->push_back(cell_back->GetValue(c));
   }
 }
 
@@ -206,10 +221,12 @@ std::string plural(size_t n, const std::string& what) {
   return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
 }
 
-// Cells of an unstructured-like dataset -> tets on ds's point ids.
+// Cells of an unstructured-like dataset -> tets on ds's point ids; with
+// `origin`, each tet's cell id.
 std::vector<Tet> tets_of_cells(vtkDataSet* ds, TetMesh& m, const std::string& path,
-                               detail::VtkMessageCapture& capture) {
+                               detail::VtkMessageCapture& capture, std::vector<vtkIdType>* origin) {
   std::vector<Tet> tets;
+  std::vector<vtkIdType> lin_cells;  // the cell id of each cell of `lin`
   std::map<int, int> dim_cache;
   std::map<int, size_t> reduced, split, dropped;  // by original cell type
   auto lin = vtkSmartPointer<vtkUnstructuredGrid>::New();
@@ -231,6 +248,7 @@ std::vector<Tet> tets_of_cells(vtkDataSet* ds, TetMesh& m, const std::string& pa
     if (type == VTK_POLYHEDRON && ug) {
       ug->GetFaceStream(c, idl);  // polyhedra need their faces, not just points
       lin->InsertNextCell(VTK_POLYHEDRON, idl);
+      if (origin) lin_cells.push_back(c);
       ++split[type];
       continue;
     }
@@ -253,6 +271,7 @@ std::vector<Tet> tets_of_cells(vtkDataSet* ds, TetMesh& m, const std::string& pa
         throw FileError(path, "tetra " + std::to_string(c) + " without 4 points");
       tets.push_back({static_cast<uint32_t>(idl->GetId(0)), static_cast<uint32_t>(idl->GetId(1)),
                       static_cast<uint32_t>(idl->GetId(2)), static_cast<uint32_t>(idl->GetId(3))});
+      if (origin) origin->push_back(c);
       continue;
     }
     if (cell_dimension(linear, dim_cache) != 3) {
@@ -260,6 +279,7 @@ std::vector<Tet> tets_of_cells(vtkDataSet* ds, TetMesh& m, const std::string& pa
       continue;
     }
     lin->InsertNextCell(linear, idl);
+    if (origin) lin_cells.push_back(c);
     ++split[type];
   }
   auto cells = [](size_t n, int type) {
@@ -271,7 +291,7 @@ std::vector<Tet> tets_of_cells(vtkDataSet* ds, TetMesh& m, const std::string& pa
   for (auto [t, n] : dropped) m.notes.push_back("dropped " + cells(n, t) + ": not 3-D");
   if (lin->GetNumberOfCells() > 0) {
     const size_t before = tets.size();
-    triangulate(lin, tets, path, capture);
+    triangulate(lin, tets, path, capture, &lin_cells, origin);
     size_t nsplit = 0;
     for (auto [t, n] : split) nsplit += n;
     m.notes.push_back("split " + plural(nsplit, "non-tet 3-D cell") + " into " +
@@ -283,7 +303,7 @@ std::vector<Tet> tets_of_cells(vtkDataSet* ds, TetMesh& m, const std::string& pa
 // Image data / structured / rectilinear grids: the filter's structured path
 // splits each hex into 5 tets with alternating parity (conforming).
 std::vector<Tet> tets_of_structured(vtkDataSet* ds, TetMesh& m, const std::string& path,
-                                    detail::VtkMessageCapture& capture) {
+                                    detail::VtkMessageCapture& capture, std::vector<vtkIdType>* origin) {
   int dims[3] = {0, 0, 0};
   if (auto* im = vtkImageData::SafeDownCast(ds))
     im->GetDimensions(dims);
@@ -298,7 +318,7 @@ std::vector<Tet> tets_of_structured(vtkDataSet* ds, TetMesh& m, const std::strin
   copy.TakeReference(ds->NewInstance());
   copy->ShallowCopy(ds);  // the id array goes on the copy, not the reader's output
   std::vector<Tet> tets;
-  triangulate(copy, tets, path, capture);
+  triangulate(copy, tets, path, capture, nullptr, origin);
   m.notes.push_back(std::string(ds->GetClassName()) + " " + std::to_string(dims[0]) + "x" +
                     std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + ": " +
                     plural(static_cast<size_t>(ds->GetNumberOfCells()), "cell") + " split into " +
@@ -316,12 +336,24 @@ TetMesh tet_mesh_of(vtkDataSet* ds, const ReadOptions& opt, const std::string& p
   if (ds->GetNumberOfPoints() >= static_cast<vtkIdType>(UINT32_MAX))
     throw FileError(path, "too many points for 32-bit tet indices");
   TetMesh m;
-  std::vector<double> scal = detail::pick_scalar(ds, opt, path, m, capture);
+  detail::PickedScalar picked = detail::pick_scalar(ds, opt, path, m, capture);
+  std::vector<double> scal = picked.cell ? std::vector<double>() : std::move(picked.values);
   const bool structured = vtkImageData::SafeDownCast(ds) || vtkStructuredGrid::SafeDownCast(ds) ||
                           vtkRectilinearGrid::SafeDownCast(ds);
-  std::vector<Tet> tets =
-      structured ? tets_of_structured(ds, m, path, capture) : tets_of_cells(ds, m, path, capture);
+  std::vector<vtkIdType> origin;  // cell data: each tet's cell
+  std::vector<vtkIdType>* want_origin = picked.cell ? &origin : nullptr;
+  std::vector<Tet> tets = structured ? tets_of_structured(ds, m, path, capture, want_origin)
+                                     : tets_of_cells(ds, m, path, capture, want_origin);
   if (tets.empty()) throw FileError(path, "no 3-D cells to make tets from");
+  if (picked.cell) {
+    if (origin.size() != tets.size()) throw FileError(path, "cannot split cells into tets: cell ids lost");
+    m.cell_scalars.resize(tets.size());
+    for (size_t t = 0; t < tets.size(); ++t) {
+      const vtkIdType c = origin[t];
+      if (c < 0 || size_t(c) >= picked.values.size()) throw FileError(path, "cannot split cells into tets: cell ids lost");
+      m.cell_scalars[t] = picked.values[size_t(c)];
+    }
+  }
 
   // Keep only points some tet uses (e.g. quadratic mid-edge nodes go).
   const auto n = static_cast<size_t>(ds->GetNumberOfPoints());
@@ -430,6 +462,7 @@ TetMesh tet_mesh_from_cells(const VtkCells& c, const std::string& name) {
   ug->SetPoints(points);
   ug->SetCells(types, cells);
   ReadOptions opt;
+  opt.association = c.association;
   if (c.scalars) {
     auto s = vtkSmartPointer<vtkDoubleArray>::New();
     s->SetName("scalar");

@@ -1,7 +1,8 @@
-// Which point scalar a VTK dataset gives a tet mesh: the named array (point
-// data first, then cell data averaged onto the points), else the active
-// point scalar or the first array; a constant default gives way to the
-// first array that varies.
+// Which scalar a VTK dataset gives a tet mesh: the named array (point data
+// first, then cell data), else the active point scalar or the first array,
+// among the arrays the association allows; a constant default gives way to
+// the first array that varies. Cell data stay per cell (one value per tet)
+// unless the association asks for them averaged onto the points.
 #include "geometry/tets/io/vtk_scalar.h"
 
 #include <vtkCellData.h>
@@ -102,29 +103,33 @@ vtkSmartPointer<vtkDataArray> cell_to_point(vtkDataSet* ds, const std::string& n
 
 }  // namespace
 
-// Picks the scalar per opt.scalar / defaults, returns one value per point of
-// ds (empty if the file has no data arrays at all).
-std::vector<double> pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const std::string& path,
-                                TetMesh& m, detail::VtkMessageCapture& capture) {
+// Picks the scalar per opt.scalar, opt.association and the defaults.
+PickedScalar pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const std::string& path, TetMesh& m,
+                         detail::VtkMessageCapture& capture) {
+  const bool points_ok = opt.association != ScalarAssociation::Cell;
+  const bool cells_ok = opt.association != ScalarAssociation::Point;
   vtkDataArray* pa = nullptr;
   vtkDataArray* ca = nullptr;
   if (!opt.scalar.empty()) {
-    pa = ds->GetPointData()->GetArray(opt.scalar.c_str());
-    if (!usable(pa)) {
-      pa = nullptr;
-      ca = ds->GetCellData()->GetArray(opt.scalar.c_str());
-      if (!usable(ca))
-        throw FileError(path, "no array named '" + opt.scalar + "'; available: " + array_list(ds));
-    }
+    vtkDataArray* p = ds->GetPointData()->GetArray(opt.scalar.c_str());
+    vtkDataArray* c = ds->GetCellData()->GetArray(opt.scalar.c_str());
+    if (points_ok && usable(p)) pa = p;
+    else if (cells_ok && usable(c)) ca = c;
+    else if (usable(p) || usable(c))
+      throw FileError(path, "array '" + opt.scalar + "' is " + (usable(p) ? "point" : "cell") +
+                                " data, and association is '" + to_string(opt.association) + "'");
+    else
+      throw FileError(path, "no array named '" + opt.scalar + "'; available: " + array_list(ds));
   } else {
-    pa = first_usable(ds->GetPointData());
-    if (!pa) ca = first_usable(ds->GetCellData());
+    if (points_ok) pa = first_usable(ds->GetPointData());
+    if (!pa && cells_ok) ca = first_usable(ds->GetCellData());
     // A constant default (a uniform field): the first array that varies,
     // point data before cell data, so the default render shows something.
     vtkDataArray* def = pa ? pa : ca;
     if (def && !varies(def)) {
       bool found = false;
       for (int cell = 0; cell < 2 && !found; ++cell) {
+        if (!(cell ? cells_ok : points_ok)) continue;
         vtkDataSetAttributes* attrs = cell ? static_cast<vtkDataSetAttributes*>(ds->GetCellData())
                                            : static_cast<vtkDataSetAttributes*>(ds->GetPointData());
         for (int i = 0; i < attrs->GetNumberOfArrays() && !found; ++i) {
@@ -141,14 +146,25 @@ std::vector<double> pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const st
     }
   }
   if (!pa && !ca) {
+    if (opt.association == ScalarAssociation::Point || opt.association == ScalarAssociation::Cell) {
+      if (first_usable(ds->GetPointData()) || first_usable(ds->GetCellData()))
+        throw FileError(path, std::string("no ") + to_string(opt.association) + " data array (association is '" +
+                                  to_string(opt.association) + "'); available: " + array_list(ds));
+    }
     m.notes.push_back("no point or cell data arrays: mesh has no scalar");
     return {};
   }
+  PickedScalar out;
   vtkSmartPointer<vtkDataArray> arr = pa;
-  if (ca) {
+  if (ca && opt.association == ScalarAssociation::CellToPoint) {
     arr = cell_to_point(ds, ca->GetName(), path, capture);
     m.notes.push_back("scalar '" + std::string(ca->GetName()) +
                       "' is cell data: averaged onto points (vtkCellDataToPointData)");
+  } else if (ca) {
+    arr = ca;
+    out.cell = true;
+    m.notes.push_back("scalar '" + std::string(ca->GetName()) +
+                      "' is cell data: one value per tet (each tet keeps its cell's value)");
   }
   m.scalar_name = arr->GetName();
   if (!m.scalar_choice.empty())
@@ -157,19 +173,24 @@ std::vector<double> pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const st
   if (nc > 1)
     m.notes.push_back("array '" + m.scalar_name + "' has " + std::to_string(nc) +
                       " components: using its magnitude");
-  std::vector<double> s(static_cast<size_t>(ds->GetNumberOfPoints()));
+  const vtkIdType n = arr->GetNumberOfTuples();
+  const vtkIdType want = out.cell ? ds->GetNumberOfCells() : ds->GetNumberOfPoints();
+  if (n < want)
+    throw FileError(path, "array '" + m.scalar_name + "' has " + std::to_string(n) + " values for " +
+                              std::to_string(want) + (out.cell ? " cells" : " points"));
+  out.values.resize(static_cast<size_t>(want));
   std::vector<double> tuple(static_cast<size_t>(nc));
-  for (vtkIdType i = 0; i < ds->GetNumberOfPoints(); ++i) {
+  for (vtkIdType i = 0; i < want; ++i) {
     if (nc == 1) {
-      s[static_cast<size_t>(i)] = arr->GetComponent(i, 0);
+      out.values[static_cast<size_t>(i)] = arr->GetComponent(i, 0);
       continue;
     }
     arr->GetTuple(i, tuple.data());
     double q = 0;
     for (double v : tuple) q += v * v;
-    s[static_cast<size_t>(i)] = std::sqrt(q);
+    out.values[static_cast<size_t>(i)] = std::sqrt(q);
   }
-  return s;
+  return out;
 }
 
 }  // namespace zs::detail

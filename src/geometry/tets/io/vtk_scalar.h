@@ -13,11 +13,16 @@ class vtkDataSet;
 
 namespace zs::detail {
 
-// One value per point of `ds` (empty if it has no data arrays at all), as
-// opt.scalar names it or by default; names the choice in m.scalar_name,
-// m.scalar_choice and m.notes. Throws FileError naming `path` for a name
-// that is not there, listing the arrays that are.
-std::vector<double> pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const std::string& path, TetMesh& m,
-                                VtkMessageCapture& capture);
+// One value per point of `ds`, or per cell (cell true), as opt.scalar names
+// it or by default and as opt.association allows; empty if it has no data
+// arrays at all. Names the choice in m.scalar_name, m.scalar_choice and
+// m.notes. Throws FileError naming `path` for a name that is not there,
+// listing the arrays that are.
+struct PickedScalar {
+  std::vector<double> values;
+  bool cell = false;
+};
+PickedScalar pick_scalar(vtkDataSet* ds, const ReadOptions& opt, const std::string& path, TetMesh& m,
+                         VtkMessageCapture& capture);
 
 }  // namespace zs::detail

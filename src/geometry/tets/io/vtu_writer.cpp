@@ -2,6 +2,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellType.h>
 #include <vtkDoubleArray.h>
+#include <vtkCellData.h>
 #include <vtkIdTypeArray.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -25,6 +26,9 @@ void write_vtu(const std::string& path, const TetMesh& m) {
   if (!m.scalars.empty() && m.scalars.size() != m.points.size())
     throw FileError(path, "cannot write: " + std::to_string(m.scalars.size()) + " scalars for " +
                               std::to_string(m.points.size()) + " points");
+  if (m.has_cell_scalars() && m.cell_scalars.size() != m.tets.size())
+    throw FileError(path, "cannot write: " + std::to_string(m.cell_scalars.size()) + " cell scalars for " +
+                              std::to_string(m.tets.size()) + " tets");
 
   // Double points so a write/read round trip is bit-exact.
   auto pts = vtkSmartPointer<vtkPoints>::New();
@@ -57,13 +61,14 @@ void write_vtu(const std::string& path, const TetMesh& m) {
   grid->SetPoints(pts);
   grid->SetCells(VTK_TETRA, cells);
 
-  if (!m.scalars.empty()) {
+  const std::vector<double>& values = m.scalar_values();
+  if (!values.empty()) {
     auto arr = vtkSmartPointer<vtkDoubleArray>::New();
     arr->SetName(m.scalar_name.empty() ? "scalar" : m.scalar_name.c_str());
-    arr->SetNumberOfValues(static_cast<vtkIdType>(m.scalars.size()));
-    for (size_t i = 0; i < m.scalars.size(); ++i)
-      arr->SetValue(static_cast<vtkIdType>(i), m.scalars[i]);
-    grid->GetPointData()->SetScalars(arr);
+    arr->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+    for (size_t i = 0; i < values.size(); ++i) arr->SetValue(static_cast<vtkIdType>(i), values[i]);
+    if (m.has_cell_scalars()) grid->GetCellData()->SetScalars(arr);
+    else grid->GetPointData()->SetScalars(arr);
   }
 
   auto writer = vtkSmartPointer<vtkXMLUnstructuredGridWriter>::New();

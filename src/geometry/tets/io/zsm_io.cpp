@@ -32,7 +32,8 @@ namespace {
 
 enum Sec { kPoints, kScalars, kTets, kStrings, kNumSec };
 constexpr const char* kSecName[kNumSec] = {"points", "scalars", "tets", "strings"};
-constexpr uint32_t kFlagScalars = 1;
+constexpr uint32_t kFlagScalars = 1;      // the scalars section: one per point
+constexpr uint32_t kFlagCellScalars = 2;  // the scalars section: one per tet (cell data)
 constexpr uint64_t kAlign = 64;
 constexpr size_t kSecTable = 40, kReserved = 136, kHeaderSum = 184;  // header offsets (docs/mesh.md)
 // Reads and writes go in blocks this large: few calls, and a block is still
@@ -86,10 +87,12 @@ Header decode_header(const unsigned char* h, size_t avail, const std::string& na
   if (checksum64(h, kHeaderSum) != load_u64(h + kHeaderSum)) throw FileError(name, "checksum mismatch in the header");
   Header hd;
   hd.flags = load_u32(h + 12);
-  if (hd.flags & ~kFlagScalars) {
+  if ((hd.flags & ~(kFlagScalars | kFlagCellScalars)) || hd.flags == (kFlagScalars | kFlagCellScalars)) {
     char hex[16];
     std::snprintf(hex, sizeof hex, "0x%x", unsigned(hd.flags));
-    throw FileError(name, std::string("unknown flags ") + hex + " in the header (version 1 defines 0x1, scalars)");
+    throw FileError(name, std::string(hd.flags & ~(kFlagScalars | kFlagCellScalars) ? "unknown" : "contradictory") +
+                              " flags " + hex + " in the header (version 1 defines 0x1, point scalars, or 0x2, "
+                              "cell scalars)");
   }
   for (size_t i = kReserved; i < kHeaderSum; ++i)
     if (h[i] != 0) throw FileError(name, "reserved header byte " + num(i) + " is not zero");
@@ -140,14 +143,15 @@ uint64_t align_up(uint64_t at) { return (at + kAlign - 1) / kAlign * kAlign; }
 void check_layout(const Header& h, uint64_t total, const std::string& name) {
   uint64_t want[kNumSec];
   want[kPoints] = bytes_for(h.points, 24, "points", total, name);
-  want[kScalars] = h.flags & kFlagScalars ? h.points * 8 : 0;
   want[kTets] = bytes_for(h.tets, 16, "tets", total, name);
+  want[kScalars] = h.flags & kFlagScalars ? h.points * 8 : h.flags & kFlagCellScalars ? h.tets * 8 : 0;
   want[kStrings] = bytes_for(h.notes, 8, "notes", total, name) + 16;  // a length per string, at least
   uint64_t at = kZsmHeaderBytes;  // <= total throughout
   for (int s = 0; s < kNumSec; ++s) {
     const Section& c = h.sec[s];
     const std::string what = std::string("the ") + kSecName[s] + " section";
-    const std::string count = s == kTets ? num(h.tets) + " tets" : num(h.points) + " points";
+    const bool per_tet = s == kTets || (s == kScalars && (h.flags & kFlagCellScalars));
+    const std::string count = per_tet ? num(h.tets) + " tets" : num(h.points) + " points";
     if (s != kStrings && c.size != want[s])
       throw FileError(name, what + " is " + num(c.size) + " bytes, " + count + " need " + num(want[s]));
     if (s == kStrings && c.size < want[s])
@@ -227,11 +231,12 @@ TetMesh read_from(uint64_t total, const ReadAt& read_at, const std::string& name
   check_layout(h, total, name);
   TetMesh m;
   m.points.resize(h.points);
-  if (h.flags & kFlagScalars) m.scalars.resize(h.points);
+  std::vector<double>& scalars = h.flags & kFlagCellScalars ? m.cell_scalars : m.scalars;
+  if (h.flags & (kFlagScalars | kFlagCellScalars)) scalars.resize(h.flags & kFlagScalars ? h.points : h.tets);
   m.tets.resize(h.tets);
   std::string strings(h.sec[kStrings].size, '\0');
   read_section(read_at, h, kPoints, reinterpret_cast<char*>(m.points.data()), name);
-  read_section(read_at, h, kScalars, reinterpret_cast<char*>(m.scalars.data()), name);
+  read_section(read_at, h, kScalars, reinterpret_cast<char*>(scalars.data()), name);
   read_section(read_at, h, kTets, reinterpret_cast<char*>(m.tets.data()), name);
   read_section(read_at, h, kStrings, strings.data(), name);
   check_indices(m, name, "");
@@ -295,17 +300,22 @@ void write_zsm(const std::string& path, const TetMesh& m) {
   if (m.has_scalars() && m.scalars.size() != m.points.size())
     throw FileError(path, "cannot write: " + num(m.scalars.size()) + " scalars for " + num(m.points.size()) +
                               " points");
+  if (m.has_scalars() && m.has_cell_scalars()) throw FileError(path, "cannot write: both point and cell scalars");
+  if (m.has_cell_scalars() && m.cell_scalars.size() != m.tets.size())
+    throw FileError(path, "cannot write: " + num(m.cell_scalars.size()) + " cell scalars for " + num(m.tets.size()) +
+                              " tets");
   check_indices(m, path, "cannot write: ");
   const std::string strings = strings_of(m);
+  const std::vector<double>& scalars = m.scalar_values();
   const char* data[kNumSec] = {reinterpret_cast<const char*>(m.points.data()),
-                               reinterpret_cast<const char*>(m.scalars.data()),
+                               reinterpret_cast<const char*>(scalars.data()),
                                reinterpret_cast<const char*>(m.tets.data()), strings.data()};
   Header h;
-  h.flags = m.has_scalars() ? kFlagScalars : 0;
+  h.flags = m.has_scalars() ? kFlagScalars : m.has_cell_scalars() ? kFlagCellScalars : 0;
   h.points = m.points.size();
   h.tets = m.tets.size();
   h.notes = m.notes.size();
-  const uint64_t size[kNumSec] = {24 * h.points, 8 * m.scalars.size(), 16 * h.tets, strings.size()};
+  const uint64_t size[kNumSec] = {24 * h.points, 8 * scalars.size(), 16 * h.tets, strings.size()};
   uint64_t at = kZsmHeaderBytes;
   for (int s = 0; s < kNumSec; ++s) {
     at = align_up(at);

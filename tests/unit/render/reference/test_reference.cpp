@@ -162,5 +162,27 @@ TEST(Reference, EyeInsideMeshIntegratesFromTheEye) {
   }
 }
 
+// Cell data: the walk holds each tet's own value, so a ray through two
+// regions of different values is two constant segments (closed form).
+TEST(Reference, CellDataInTwoRegionsMatchClosedForm) {
+  const test::TwoRegions two;
+  const TetMesh m = two.mesh();
+  for (Projection proj : {Projection::Orthographic, Projection::Perspective}) {
+    const RenderSettings rs = ref_settings(60, 48, proj, two.tf());
+    ReferenceStats st;
+    const Image img = reference(m, rs, &st);
+    double worst = 0;
+    for (uint32_t j = 0; j < rs.height; ++j)
+      for (uint32_t i = 0; i < rs.width; ++i) {
+        glm::dvec3 o, d;
+        spec_ray(rs.camera, rs.width, rs.height, int(i), int(j), &o, &d);
+        double want[4];
+        two.expected(o, d, want);
+        for (int k = 0; k < 4; ++k) worst = std::max(worst, std::abs(img.at(i, j)[k] - want[k]));
+      }
+    EXPECT_LE(worst, 1e-6) << int(proj);
+  }
+}
+
 }  // namespace
 }  // namespace zs

@@ -92,7 +92,7 @@ std::map<std::array<uint32_t, 3>, int> face_counts(const TetMesh& m) {
 }
 
 std::pair<double, double> scalar_range(const TetMesh& m) {
-  auto [lo, hi] = std::minmax_element(m.scalars.begin(), m.scalars.end());
+  auto [lo, hi] = std::minmax_element(m.scalar_values().begin(), m.scalar_values().end());
   return {*lo, *hi};
 }
 
@@ -224,32 +224,104 @@ TEST(VtkIo, ScalarByNameVectorMagnitudeAndUnknownName) {
   EXPECT_NE(msg.find("vel (point)"), std::string::npos) << msg;
 }
 
-TEST(VtkIo, CellDataAveragedOntoPoints) {
-  const auto path = (zs::test::scratch_dir() / "cells.vtk").string();
-  write_text(path, R"(# vtk DataFile Version 3.0
-two tets
+// Two tets with cell data (stress 2 and 4) and a point array beside them,
+// then a hexahedron (one cell, value 9) that the reader splits into tets.
+constexpr const char* kCellsVtk = R"(# vtk DataFile Version 3.0
+cells
 ASCII
 DATASET UNSTRUCTURED_GRID
-POINTS 5 float
+POINTS 13 float
 0 0 0  1 0 0  0 1 0  0 0 1  1 1 1
-CELLS 2 10
+3 0 0  4 0 0  4 1 0  3 1 0  3 0 1  4 0 1  4 1 1  3 1 1
+CELLS 3 19
 4 0 1 2 3
 4 1 2 3 4
-CELL_TYPES 2
+8 5 6 7 8 9 10 11 12
+CELL_TYPES 3
 10
 10
-CELL_DATA 2
+12
+CELL_DATA 3
 SCALARS stress float 1
 LOOKUP_TABLE default
-2 4
-)");
-  TetMesh m = zs::read_vtk(path, {});
+2 4 9
+POINT_DATA 13
+SCALARS temp float 1
+LOOKUP_TABLE default
+0 1 2 3 4 5 6 7 8 9 10 11 12
+)";
+
+TEST(VtkIo, CellDataStayPerTetAndSplitCellsKeepTheirValue) {
+  const auto path = (zs::test::scratch_dir() / "cells.vtk").string();
+  write_text(path, kCellsVtk);
+  ReadOptions opt;
+  opt.scalar = "stress";
+  TetMesh m = zs::read_vtk(path, opt);
   EXPECT_EQ(m.scalar_name, "stress");
-  EXPECT_TRUE(has_note(m, "cell data")) << all_notes(m);
-  ASSERT_EQ(m.scalars.size(), 5u);
+  EXPECT_TRUE(has_note(m, "one value per tet")) << all_notes(m);
+  EXPECT_TRUE(m.scalars.empty());
+  ASSERT_EQ(m.cell_scalars.size(), m.num_tets());
+  ASSERT_GE(m.num_tets(), 7u);  // 2 tets + a hex in 5 or 6
+  EXPECT_EQ(m.cell_scalars[0], 2.0);
+  EXPECT_EQ(m.cell_scalars[1], 4.0);
+  for (size_t t = 2; t < m.num_tets(); ++t) {
+    EXPECT_EQ(m.cell_scalars[t], 9.0) << t;
+    for (uint32_t v : m.tets[t]) EXPECT_GE(m.points[v].x, 3.0) << "tet " << t << " is the hex's";
+  }
+  // The default array is the point one; the cell one by association.
+  EXPECT_EQ(zs::read_vtk(path, {}).scalar_name, "temp");
+  ReadOptions cell;
+  cell.association = zs::ScalarAssociation::Cell;
+  const TetMesh c = zs::read_vtk(path, cell);
+  EXPECT_EQ(c.scalar_name, "stress");
+  EXPECT_EQ(c.cell_scalars, m.cell_scalars);
+}
+
+TEST(VtkIo, CellDataAveragedOntoPointsOnRequest) {
+  const auto path = (zs::test::scratch_dir() / "cells.vtk").string();
+  write_text(path, kCellsVtk);
+  ReadOptions opt;
+  opt.scalar = "stress";
+  opt.association = zs::ScalarAssociation::CellToPoint;
+  TetMesh m = zs::read_vtk(path, opt);
+  EXPECT_EQ(m.scalar_name, "stress");
+  EXPECT_TRUE(has_note(m, "averaged onto points")) << all_notes(m);
+  EXPECT_TRUE(m.cell_scalars.empty());
+  ASSERT_EQ(m.scalars.size(), m.num_points());
   EXPECT_EQ(m.scalars[0], 2.0);
   EXPECT_EQ(m.scalars[1], 3.0);  // shared by both tets: mean
   EXPECT_EQ(m.scalars[4], 4.0);
+  EXPECT_EQ(m.scalars[5], 9.0);
+}
+
+TEST(VtkIo, AssociationThatTheArrayDoesNotHaveIsAnError) {
+  const auto path = (zs::test::scratch_dir() / "cells.vtk").string();
+  write_text(path, kCellsVtk);
+  ReadOptions opt;
+  opt.scalar = "stress";
+  opt.association = zs::ScalarAssociation::Point;
+  EXPECT_NE(expect_mesh_error([&] { zs::read_vtk(path, opt); }, path).find("'stress' is cell data"), std::string::npos);
+  opt.scalar = "temp";
+  opt.association = zs::ScalarAssociation::Cell;
+  EXPECT_NE(expect_mesh_error([&] { zs::read_vtk(path, opt); }, path).find("'temp' is point data"), std::string::npos);
+  zs::ScalarAssociation a;
+  EXPECT_TRUE(zs::parse_association("cell_to_point", &a));
+  EXPECT_EQ(a, zs::ScalarAssociation::CellToPoint);
+  EXPECT_FALSE(zs::parse_association("cells", &a));
+}
+
+TEST(VtkIo, VtuRoundTripKeepsCellData) {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  m.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}};
+  m.cell_scalars = {-1.0 / 7.0, 1e-310};
+  m.scalar_name = "pressure";
+  const auto path = (zs::test::scratch_dir() / "rt-cells.vtu").string();
+  zs::write_vtu(path, m);
+  const TetMesh r = zs::read_vtk(path, {});
+  EXPECT_EQ(r.cell_scalars, m.cell_scalars);
+  EXPECT_TRUE(r.scalars.empty());
+  EXPECT_EQ(r.scalar_name, "pressure");
 }
 
 TEST(VtkIo, QuadraticTetUsesCornersOnly) {
@@ -348,7 +420,7 @@ TEST(VtkIo, KieferQuadraticTets) {
   EXPECT_TRUE(has_note(m, "cell data")) << all_notes(m);
   EXPECT_TRUE(has_note(m, "corner nodes")) << all_notes(m);
   EXPECT_LT(m.num_points(), 102578u);  // mid-edge nodes gone
-  EXPECT_EQ(m.scalars.size(), m.num_points());
+  EXPECT_EQ(m.cell_scalars.size(), m.num_tets());  // cell data, one value per tet
   EXPECT_EQ(zero_volume_tets(m), 0u);
   for (const auto& t : m.tets)
     for (uint32_t v : t) ASSERT_LT(v, m.num_points());

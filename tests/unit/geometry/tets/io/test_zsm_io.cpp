@@ -82,6 +82,7 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 void expect_same(const TetMesh& a, const TetMesh& b) {
   EXPECT_TRUE(same_bits(a.points, b.points));
   EXPECT_TRUE(same_bits(a.scalars, b.scalars));
+  EXPECT_TRUE(same_bits(a.cell_scalars, b.cell_scalars));
   EXPECT_EQ(a.tets, b.tets);
   EXPECT_EQ(a.scalar_name, b.scalar_name);
   EXPECT_EQ(a.scalar_choice, b.scalar_choice);
@@ -117,6 +118,19 @@ TEST(ZsmIo, RoundTripWithoutScalarsOrStrings) {
   const TetMesh r = parse_zsm(zsm_bytes(m), "mem");
   EXPECT_FALSE(r.has_scalars());
   expect_same(r, m);
+}
+
+TEST(ZsmIo, CellScalarsRoundTrip) {
+  TetMesh m = sample_mesh();
+  m.scalars.clear();
+  for (size_t t = 0; t < m.num_tets(); ++t) m.cell_scalars.push_back(0.5 + double(t) / 3);
+  m.cell_scalars[0] = std::bit_cast<double>(uint64_t(0x7ff8dead'beef0001));
+  const TetMesh r = parse_zsm(zsm_bytes(m), "mem");
+  EXPECT_FALSE(r.has_scalars());
+  EXPECT_TRUE(r.has_cell_scalars());
+  expect_same(r, m);
+  m.cell_scalars.pop_back();
+  EXPECT_THROW(zsm_bytes(m), FileError);
 }
 
 TEST(ZsmIo, EmptyMeshRoundTrips) {
@@ -272,10 +286,18 @@ TEST(ZsmIo, CountsBeyondTheFileAreRefusedBeforeAllocating) {
 
 TEST(ZsmIo, HeaderFieldsThisVersionDoesNotDefine) {
   std::string b = zsm_bytes(sample_mesh());
+  b[12] = 5;
+  reseal(b);
+  expect_error(error_of([&] { parse_zsm(b, "h.zsm"); }), "h.zsm",
+               "unknown flags 0x5 in the header (version 1 defines 0x1, point scalars, or 0x2, cell scalars)");
   b[12] = 3;
   reseal(b);
   expect_error(error_of([&] { parse_zsm(b, "h.zsm"); }), "h.zsm",
-               "unknown flags 0x3 in the header (version 1 defines 0x1, scalars)");
+               "contradictory flags 0x3 in the header (version 1 defines 0x1, point scalars, or 0x2, cell scalars)");
+  // Point scalars read as cell scalars: the section's size is checked against the tets.
+  b[12] = 2;
+  reseal(b);
+  EXPECT_NE(error_of([&] { parse_zsm(b, "h.zsm"); }).find("the scalars section is"), std::string::npos);
   b = zsm_bytes(sample_mesh());
   b[150] = 1;
   reseal(b);
