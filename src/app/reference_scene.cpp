@@ -91,7 +91,7 @@ ReferenceImage reference_volume(SceneInput& in) {
   out.pixels = std::move(img.rgba);
   out.stats = {{"time_ms", s.ms_total},       {"rays_hit", s.rays_hit},
                {"segments", s.segments},      {"tet_steps", s.tet_steps},
-               {"entries", s.entries},        {"lost_walks", s.lost_walks}, {"flat_tets", s.flat_tets},
+               {"entries", s.entries},        {"lost_walks", s.lost_walks}, {"segments_clipped", s.segments_clipped}, {"flat_tets", s.flat_tets},
                {"boundary_faces", s.boundary_faces}, {"unbinned_faces", s.unbinned_faces},
                {"image", {{"width", out.width}, {"height", out.height}}}};
   out.summary = line("%ux%u, %llu rays hit, %llu segments, %llu lost walks, %.1f ms", out.width, out.height,

@@ -116,6 +116,8 @@ nlohmann::json VolumeJob::stats(const TiledRenderer& r, const FrameReport& f) co
       {"tets_invisible", S.tets_invisible},
       {"tets_degenerate", S.tets_degenerate},
       {"cell_data_tets", S.cell_data_tets},
+      {"tets_clipped", S.tets_clipped},
+      {"segments_clipped", S.segments_clipped},
       {"max_list_length", S.max_list_length},
       {"forced_composites", S.forced_composites},
       {"budget_flushes", S.budget_flushes},
@@ -168,6 +170,7 @@ std::string VolumeJob::empty_reason(const TiledRenderer& r) const {
   return !any_depth ? "the camera cannot resolve the mesh at this scale (depths are not finite)"
          : !in_front                                      ? "the whole mesh is behind the camera"
          : nonfinite_tets_ == tets                          ? "every tet has a non-finite coordinate or scalar"
+         : st.tets_clipped >= tets                        ? "the clip planes keep none of the mesh"
          : st.tets_invisible + st.tets_degenerate >= tets ? "the transfer function's opacity is zero "
                                                              "wherever the mesh is (or its cells are flat)"
          : st.faces_projected == 0                        ? "the mesh is outside the view"

@@ -9,6 +9,7 @@
 
 #include "base/util/memory.h"
 #include "base/view/camera.h"
+#include "base/view/clip_region.h"
 
 namespace zs {
 
@@ -16,6 +17,9 @@ struct FrameSettings {
   uint32_t width = 512, height = 512;
   double background[4] = {0, 0, 0, 0};  // premultiplied RGBA, where nothing is drawn
   Camera camera;
+  // The scene's clip planes and crop box (empty: keep everything); the
+  // volume renderers cut their segments to it.
+  ClipRegion clip;
   int threads = 1;
   // Screen tiles are rendered independently (raster/tile_loop.h); the image
   // does not depend on their size, only speed and memory do.

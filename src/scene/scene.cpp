@@ -263,6 +263,39 @@ void parse_camera_json(const std::string& text, const std::string& name, Camera*
   parse_camera(c, j, camera);
 }
 
+namespace {
+
+// "clip": [{"plane": [nx, ny, nz, d]}, ...] (keep n·x + d <= 0) and
+// "crop": [xmin, xmax, ymin, ymax, zmin, zmax], into one region.
+void parse_clip(const Ctx& c, const json& j, ClipRegion* out) {
+  if (j.contains("clip")) {
+    const json& cl = j["clip"];
+    if (!cl.is_array()) c.fail("clip must be a list of {\"plane\": [nx, ny, nz, d]}");
+    for (size_t i = 0; i < cl.size(); ++i) {
+      const std::string w = "clip[" + std::to_string(i) + "]";
+      check_keys(c, cl[i], w, {"plane"});
+      const json& p = cl[i].contains("plane") ? cl[i]["plane"] : json();
+      if (!p.is_array() || p.size() != 4) c.fail(w + ".plane must be [nx, ny, nz, d]");
+      const glm::dvec3 n{num(c, p[0], w + ".plane[0]"), num(c, p[1], w + ".plane[1]"), num(c, p[2], w + ".plane[2]")};
+      if (n == glm::dvec3(0.0)) c.fail(w + ".plane's normal (nx, ny, nz) must not be zero");
+      out->planes.push_back({n, num(c, p[3], w + ".plane[3]")});
+    }
+  }
+  if (j.contains("crop")) {
+    const json& b = j["crop"];
+    if (!b.is_array() || b.size() != 6) c.fail("crop must be [xmin, xmax, ymin, ymax, zmin, zmax]");
+    glm::dvec3 lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = num(c, b[2 * a], "crop[" + std::to_string(2 * a) + "]");
+      hi[a] = num(c, b[2 * a + 1], "crop[" + std::to_string(2 * a + 1) + "]");
+      if (!(lo[a] <= hi[a])) c.fail("crop's " + std::string(1, char('x' + a)) + "min must not exceed its max");
+    }
+    out->add_box(lo, hi);
+  }
+}
+
+}  // namespace
+
 Scene parse_scene(const std::string& text, const std::string& name, const std::string& base_dir) {
   const Ctx c{name, base_dir};
   json j;
@@ -274,7 +307,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     c.fail(std::string("invalid JSON: ") + e.what());
   }
   check_keys(c, j, "scene", {"mesh", "spheres", "surfaces", "image", "camera", "transfer_function", "shading", "render",
-                             "ground", "lights", "shadows", "ao"});
+                             "ground", "lights", "shadows", "ao", "clip", "crop"});
   Scene s;
   RenderSettings& rs = s.settings;
 
@@ -352,6 +385,11 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
       c.fail(e.what());
     }
     s.has_transfer_function = true;
+  }
+
+  if (j.contains("clip") || j.contains("crop")) {
+    if (s.kind != SceneKind::Volume) c.fail(std::string("'") + (j.contains("clip") ? "clip" : "crop") + "' is for volume scenes");
+    parse_clip(c, j, &rs.clip);
   }
 
   if (j.contains("render") && s.kind == SceneKind::Volume) {

@@ -90,6 +90,20 @@ def test_vtk_grid_and_numpy_match_the_vtu_file(cli, tmp_path):
     same(zsweep.render({"mesh": arrays}, width=48, height=40), ref2[:, :, :4])
 
 
+def test_clip_planes_match_the_cli(cli, tmp_path):
+    g = hex_grid()
+    path = tmp_path / "hex.vtu"
+    write_vtu(g, path)
+    clip = {"clip": [{"plane": [1, -0.5, 0.2, -0.4]}], "crop": [0, 1, 0.1, 0.9, 0, 1]}
+    scene = dict(VOLUME, mesh={"path": str(path), "scalar": "density"}, **clip)
+    (tmp_path / "s.json").write_text(json.dumps(scene))
+    ref, _ = cli(tmp_path / "s.json")
+    img, st = zsweep.render_stats(dict(VOLUME, mesh=g, **clip))
+    same(img, ref[:, :, :4])
+    assert st["tets_clipped"] > 0 and st["segments_clipped"] > 0
+    assert not np.array_equal(img, zsweep.render(dict(VOLUME, mesh=g)))
+
+
 def test_stats_have_the_cli_keys(cli, tmp_path):
     img, st = zsweep.render_stats(dict(VOLUME, mesh=hex_grid()))
     for k in ("time_ms", "fragments", "rendered_pixels", "faces_projected", "mesh", "image", "tiles"):

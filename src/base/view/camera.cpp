@@ -54,4 +54,15 @@ void View::ray(double X, double Y, glm::dvec3* origin, glm::dvec3* dir) const {
   }
 }
 
+void View::depth_line(double X, double Y, glm::dvec3* at_zero, glm::dvec3* per_depth) const {
+  const double a = (X - ox_) / sx_, b = (oy_ - Y) / sy_;
+  if (persp_) {
+    *at_zero = eye_;
+    *per_depth = f_ + a * r_ + b * u_;  // its component along f is 1
+  } else {
+    *at_zero = eye_ + a * r_ + b * u_;
+    *per_depth = f_;
+  }
+}
+
 }  // namespace zs

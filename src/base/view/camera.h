@@ -42,6 +42,9 @@ class View {
   double ray_length_factor(double X, double Y) const;
   // The ray through pixel coordinates (X, Y) (X = i for the centre of column i).
   void ray(double X, double Y, glm::dvec3* origin, glm::dvec3* dir_unit) const;
+  // The same ray parametrised by view depth: the point at depth z is
+  // at_zero + z·per_depth.
+  void depth_line(double X, double Y, glm::dvec3* at_zero, glm::dvec3* per_depth) const;
 
   bool perspective() const { return persp_; }
   uint32_t width() const { return w_; }

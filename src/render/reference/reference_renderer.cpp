@@ -24,7 +24,7 @@ namespace zs {
 namespace {
 
 struct RowCounters {
-  uint64_t rays_hit = 0, segments = 0, tet_steps = 0, entries = 0, lost = 0;
+  uint64_t rays_hit = 0, segments = 0, tet_steps = 0, entries = 0, lost = 0, clipped = 0;
 };
 
 }  // namespace
@@ -69,6 +69,9 @@ Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const Fra
         glm::dvec3 o, d;
         view.ray(double(i), double(j), &o, &d);
         bins.hits(i, j, o, d, &hits);
+        // The part of the ray the clip planes keep (everything: ±inf).
+        double t_lo, t_hi;
+        if (!rs.clip.interval(o, d, &t_lo, &t_hi)) hits.clear();
         double rgb[3] = {0, 0, 0}, T = 1.0;
         double t_done = -INFINITY;  // the line is integrated (or walked) up to here
         bool hit = false;
@@ -79,13 +82,18 @@ Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const Fra
           if (!h.entry || h.t < t_done - eps - 1e-12 * std::abs(h.t)) continue;
           ++c.entries;
           const WalkResult w = walk_line(mesh, topo, solid, o, d, h.face, h.t, [&](const WalkSegment& s) {
-            const double a = std::max({s.t0, t_done, 0.0});
-            if (!(s.t1 > a)) return;
+            const double a = std::max({s.t0, t_done, 0.0, t_lo}), b = std::min(s.t1, t_hi);
+            if (!(b > a)) {
+              c.clipped += s.t1 > s.t0 && (s.t1 <= t_lo || s.t0 >= t_hi);
+              return;
+            }
+            c.clipped += a == t_lo || b == t_hi;
             // A cell with a non-finite scalar is empty (the engine drops it too).
             if (!std::isfinite(s.s0) || !std::isfinite(s.s1)) return;
-            // Scalar at the clipped start, linear in t within the tet.
+            // Scalars at the cut ends, linear in t within the tet.
             const double s0 = s.t1 > s.t0 ? s.s0 + (s.s1 - s.s0) * (a - s.t0) / (s.t1 - s.t0) : s.s0;
-            const SegmentLight l = integ.integrate(s0, s.s1, s.t1 - a);
+            const double s1 = b == s.t1 ? s.s1 : s.s0 + (s.s1 - s.s0) * (b - s.t0) / (s.t1 - s.t0);
+            const SegmentLight l = integ.integrate(s0, s1, b - a);
             for (int k = 0; k < 3; ++k) rgb[k] += T * l.rgb[k];
             T *= l.T;
             ++c.segments;
@@ -113,6 +121,7 @@ Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const Fra
       stats->tet_steps += c.tet_steps;
       stats->entries += c.entries;
       stats->lost_walks += c.lost;
+      stats->segments_clipped += c.clipped;
     }
     stats->boundary_faces = bins.num_faces();
     for (uint8_t f : solid.flat) stats->flat_tets += f;

@@ -28,6 +28,7 @@ struct ReferenceStats {
   uint64_t segments = 0;        // tet pieces integrated
   uint64_t tet_steps = 0;       // tets visited (including behind the eye)
   uint64_t entries = 0;         // walks started at a boundary entry
+  uint64_t segments_clipped = 0;  // segments cut or dropped by the clip planes
   uint64_t lost_walks = 0;      // walks that found no exit (the rest of that line re-enters at the next boundary face)
   uint64_t flat_tets = 0;       // zero-volume tets, left out of the solid mesh
   uint64_t boundary_faces = 0, unbinned_faces = 0;

@@ -20,10 +20,10 @@ void Compositor::composite(PixelRecord& px, PixelLists& lists, float z_limit, in
     const float z = px.z[0], s = px.s[0];
     const uint32_t kind = px.kind(0);
     lists.drop_front(px, 1);
-    if (px.inside > 0 && z > px.last_z) {
-      const float s1 = held_ ? px.last_s : s;
-      const SegmentLight seg = integ_.integrate(px.last_s, integ_.end(px.last_s), s1, integ_.end(s1),
-                                                double(z - px.last_z) * len_factor);
+    Cut k{px.last_s, held_ ? px.last_s : s, double(z - px.last_z)};
+    if (px.inside > 0 && z > px.last_z &&
+        (!clip_ || cut(uint32_t(&px - records_), px.last_z, px.last_s, z, float(k.s1), &k))) {
+      const SegmentLight seg = integ_.integrate(k.s0, integ_.end(k.s0), k.s1, integ_.end(k.s1), k.dz * len_factor);
       PixelLight& l = lights_[&px - records_];
       const double T = l.T;
       l.rgb[0] += T * seg.rgb[0];

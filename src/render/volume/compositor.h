@@ -27,11 +27,13 @@ class Compositor {
   // segments are queued there and composited into lights[pixel] in order
   // when it fills or on flush().
   // held: cell data — each segment's scalar is its front fragment's, held
-  // over the whole segment (the tet's own value; face_classes.h).
+  // over the whole segment (the tet's own value; face_classes.h). clip: per
+  // pixel, the depth interval the clip planes keep (two floats, in the
+  // fragments' depth units; null: no clip planes); segments are cut to it.
   Compositor(const View& view, const SegmentIntegrator& integ, double et_transmittance, SegmentBatch* batch,
-             PixelRecord* records, PixelLight* lights, bool held = false)
+             PixelRecord* records, PixelLight* lights, bool held = false, const float* clip = nullptr)
       : view_(view), integ_(integ), et_(et_transmittance), batch_(batch), records_(records), lights_(lights),
-        held_(held) {}
+        held_(held), clip_(clip) {}
   void flush() {
     if (batch_) batch_->flush(lights_);
   }
@@ -50,9 +52,19 @@ class Compositor {
       for (; i < n && px.z[i] < z_limit; ++i) {
         const float z = px.z[i];
         if (px.inside > 0 && z > px.last_z) {
-          if (batch_->full()) batch_->flush(lights_);
-          batch_->push(pixel, px.last_s, held_ ? px.last_s : px.s[i], double(z - px.last_z) * len_factor);
-          ++segments_;
+          const float s1 = held_ ? px.last_s : px.s[i];
+          if (!clip_) {
+            if (batch_->full()) batch_->flush(lights_);
+            batch_->push(pixel, px.last_s, s1, double(z - px.last_z) * len_factor);
+            ++segments_;
+          } else {
+            Cut k;
+            if (cut(pixel, px.last_z, px.last_s, z, s1, &k)) {
+              if (batch_->full()) batch_->flush(lights_);
+              batch_->push(pixel, k.s0, k.s1, k.dz * len_factor);
+              ++segments_;
+            }
+          }
         }
         step_past(px, z, px.s[i], px.kind(i));
       }
@@ -75,7 +87,29 @@ class Compositor {
     px.last_s = s;
   }
 
+  // A segment from (z0, s0) to (z1, s1) cut to pixel p's clip interval:
+  // false when nothing is left; the scalar stays linear (held: constant).
+  struct Cut {
+    double s0, s1, dz;
+  };
+  bool cut(uint32_t p, float z0, float s0, float z1, float s1, Cut* out) {
+    const float lo = clip_[2 * p], hi = clip_[2 * p + 1];
+    if (z0 >= lo && z1 <= hi) {  // wholly kept: the uncut segment's numbers
+      *out = {s0, s1, double(z1 - z0)};
+      return true;
+    }
+    ++clipped_;
+    const float a = z0 < lo ? lo : z0, b = z1 > hi ? hi : z1;
+    if (!(b > a)) return false;
+    const double ds = (double(s1) - s0) / (double(z1) - z0);
+    out->s0 = a == z0 ? double(s0) : s0 + ds * (double(a) - z0);
+    out->s1 = b == z1 ? double(s1) : s0 + ds * (double(b) - z0);
+    out->dz = double(b - a);
+    return true;
+  }
+
   uint64_t segments() const { return segments_; }
+  uint64_t clipped_segments() const { return clipped_; }
   uint64_t terminated_pixels() const { return terminated_; }
 
  private:
@@ -86,7 +120,8 @@ class Compositor {
   PixelRecord* records_;
   PixelLight* lights_;
   bool held_;
-  uint64_t segments_ = 0, terminated_ = 0;
+  const float* clip_;
+  uint64_t segments_ = 0, terminated_ = 0, clipped_ = 0;
 };
 
 }  // namespace zs

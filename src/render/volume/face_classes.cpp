@@ -18,7 +18,8 @@ constexpr size_t kGrain = 1 << 14;
 std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, const TransferFunction& tf,
                                       const View& view, FaceClassCounts* counts,
                                       std::vector<uint8_t>* tet_visible, std::vector<uint8_t>* on_visible,
-                                      std::vector<FaceClass> storage) {
+                                      std::vector<FaceClass> storage, const ClipRegion* clip) {
+  if (clip && clip->empty()) clip = nullptr;
   const size_t nt = m.num_tets();
   const bool cell = m.has_cell_scalars();
   std::vector<uint8_t> visible(nt, 0);
@@ -30,6 +31,14 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
       if (topo.tet_degenerate[t]) {
         ++c.tets_degenerate;
         continue;
+      }
+      if (clip) {
+        const Tet& tv = m.tets[t];
+        const glm::dvec3 p[4] = {m.points[tv[0]], m.points[tv[1]], m.points[tv[2]], m.points[tv[3]]};
+        if (clip->excludes(p, 4)) {
+          ++c.tets_clipped;
+          continue;
+        }
       }
       // The scalar range over the tet: its own value (cell data), else its
       // vertices' (no scalars: 0).
@@ -98,6 +107,7 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
     counts->tets_degenerate += c.tets_degenerate;
     counts->faces_culled += c.faces_culled;
     counts->cell_data_tets += c.cell_data_tets;
+    counts->tets_clipped += c.tets_clipped;
   });
   if (tet_visible) *tet_visible = std::move(visible);
   return cls;

@@ -1,9 +1,10 @@
 // "Model only what the scene requires": which tets can contribute light, and
 // what each face is to a ray coming from the eye.
 //
-// A tet is visible unless it is degenerate (zero volume, non-finite) or its
-// whole scalar range maps to zero opacity: with absorption plus emission,
-// such a tet neither attenuates nor emits, so dropping it is exact. Faces are
+// A tet is visible unless it is degenerate (zero volume, non-finite), its
+// whole scalar range maps to zero opacity (with absorption plus emission,
+// such a tet neither attenuates nor emits), or the scene's clip planes keep
+// none of it: dropping any of these is exact. Faces are
 // then classified against the visible subset of the mesh:
 //   culled   — no visible tet on either side: no fragments at all;
 //   interior — visible on both sides;
@@ -26,6 +27,7 @@
 #include "geometry/tets/tet_mesh.h"
 #include "geometry/tets/topology.h"
 #include "base/view/camera.h"
+#include "base/view/clip_region.h"
 #include "base/optics/transfer_function.h"
 
 namespace zs {
@@ -40,6 +42,7 @@ struct FaceClassCounts {
   uint64_t tets_degenerate = 0;  // zero volume or non-finite
   uint64_t faces_culled = 0;
   uint64_t cell_data_tets = 0;  // visible tets rendered with their own (cell) value
+  uint64_t tets_clipped = 0;    // wholly outside a clip plane
 };
 
 // tet_visible (optional) receives one byte per tet; on_visible (optional)
@@ -50,6 +53,6 @@ std::vector<FaceClass> classify_faces(const TetMesh& m, const Topology& topo, co
                                       const View& view, FaceClassCounts* counts,
                                       std::vector<uint8_t>* tet_visible = nullptr,
                                       std::vector<uint8_t>* on_visible = nullptr,
-                                      std::vector<FaceClass> storage = {});
+                                      std::vector<FaceClass> storage = {}, const ClipRegion* clip = nullptr);
 
 }  // namespace zs

@@ -26,8 +26,10 @@ class TileSweep {
   TileSweep(const SweepShared& in, const Viewport& vp, uint64_t max_fragments, TileWorkspace& ws, RenderStats& S)
       : in_(in), rs_(in.rs), vp_(vp), vw_(uint32_t(vp.x1 - vp.x0)), ws_(ws), S_(S),
         npix_(size_t(vw_) * uint32_t(vp.y1 - vp.y0)), records_(prepare(ws, npix_)),
+        clip_(clip_for(in, vp, vw_, npix_, ws)),
         comp_(in.view, in.integ, rs_.early_termination > 0 ? rs_.early_termination / 510.0 : 0.0,
-              batch_for(in, ws), records_, ws.light.data(), in.cell != nullptr),  // after prepare() sized ws.light
+              batch_for(in, ws), records_, ws.light.data(), in.cell != nullptr,  // after prepare() sized ws.light
+              clip_),
         timed_(rs_.phase_times) {
     ws.active.clear();
     ws.touched.clear();
@@ -46,6 +48,23 @@ class TileSweep {
           in.rs.single_precision ? KernelPrecision::Single : KernelPrecision::Double);
     return ws.batch.get();
   }
+  // The depth interval each pixel's ray keeps of the clip region, relative
+  // to z_origin as fragments are (null: no clip planes).
+  static const float* clip_for(const SweepShared& in, const Viewport& vp, uint32_t vw, size_t npix, TileWorkspace& ws) {
+    const ClipRegion& region = in.rs.clip;
+    if (region.empty()) return nullptr;
+    ws.clip.resize(2 * npix);
+    for (size_t p = 0; p < npix; ++p) {
+      glm::dvec3 at, per;
+      in.view.depth_line(double(vp.x0 + int(p % vw)), double(vp.y0 + int(p / vw)), &at, &per);
+      double lo, hi;
+      const bool kept = region.interval(at, per, &lo, &hi);
+      ws.clip[2 * p] = kept ? float(lo - in.z_origin) : INFINITY;
+      ws.clip[2 * p + 1] = kept ? float(hi - in.z_origin) : -INFINITY;
+    }
+    return ws.clip.data();
+  }
+
   // Records are indexed row by row within the tile (any tile size fits in
   // records that are all reset). finish() resets the ones a tile touched.
   static PixelRecord* prepare(TileWorkspace& ws, size_t npix) {
@@ -126,6 +145,7 @@ class TileSweep {
     S_.fragments += fragments_;
     S_.max_list_length = std::max(S_.max_list_length, max_len_);
     S_.segments += comp_.segments();
+    S_.segments_clipped += comp_.clipped_segments();
     S_.early_terminated_pixels += comp_.terminated_pixels();
     S_.peak_fragments = std::max<uint64_t>(S_.peak_fragments, ws_.lists.peak_fragments());
     S_.peak_overflow_fragments = std::max<uint64_t>(S_.peak_overflow_fragments, ws_.lists.peak_overflow_fragments());
@@ -362,6 +382,7 @@ class TileSweep {
   RenderStats& S_;
   size_t npix_;  // this tile's pixels (the first npix_ records)
   PixelRecord* records_;
+  const float* clip_;
   Compositor comp_;
   bool timed_;
   uint64_t fragments_ = 0, max_len_ = 0;  // this tile's counts (kept out of S_ in the hot loop)

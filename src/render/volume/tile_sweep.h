@@ -66,6 +66,7 @@ struct alignas(128) TileWorkspace {
   FaceFragments frags;  // the benchmarks' timed path only
   std::unique_ptr<TriangleScanner> scanner;  // the render's scan strategy, with its scratch
   std::vector<float> out;  // the finished tile, RGBA
+  std::vector<float> clip;  // per pixel, the depth interval the clip planes keep (clip planes only)
   std::vector<StagedItem> staged = std::vector<StagedItem>(kStage);
   std::unique_ptr<SegmentBatch> batch;  // exact integrator without early termination
 };

@@ -52,6 +52,7 @@ void add_stats(RenderStats& a, const RenderStats& b) {
   a.budget_flushes += b.budget_flushes;
   a.composite_events += b.composite_events;
   a.segments += b.segments;
+  a.segments_clipped += b.segments_clipped;
   a.early_terminated_pixels += b.early_terminated_pixels;
   a.peak_fragments = std::max(a.peak_fragments, b.peak_fragments);  // per tile
   a.peak_overflow_fragments = std::max(a.peak_overflow_fragments, b.peak_overflow_fragments);
@@ -201,7 +202,8 @@ struct ZSweepRenderer::Impl {
     FaceClassCounts fc;
     std::vector<uint8_t> tet_visible;  // only the near-plane clip needs it
     std::vector<uint8_t> on_face;  // per point: on a face that is not culled
-    in.cls = classify_faces(mesh, topo, rs.tf, view, &fc, clip ? &tet_visible : nullptr, &on_face, std::move(given.cls));
+    in.cls = classify_faces(mesh, topo, rs.tf, view, &fc, clip ? &tet_visible : nullptr, &on_face, std::move(given.cls),
+                            &rs.clip);
     std::vector<uint8_t> clipped;  // empty: nothing clipped
     if (clip) {
       clipped.assign(topo.num_faces(), 0);
@@ -213,6 +215,7 @@ struct ZSweepRenderer::Impl {
     S.tets_degenerate = fc.tets_degenerate;
     S.faces_culled = fc.faces_culled;
     S.cell_data_tets = fc.cell_data_tets;
+    S.tets_clipped = fc.tets_clipped;
     // The sweep's events: vertices in front of the near plane on a face that
     // is not culled.
     std::vector<SweepEvent> events;

@@ -4,6 +4,8 @@
 // ZSweep image within float rounding of the reference ray caster.
 #include <cmath>
 
+#include <glm/vec3.hpp>
+
 #include <gtest/gtest.h>
 
 #include "geometry/tets/io/mesh_io.h"
@@ -17,13 +19,17 @@
 namespace zs {
 namespace {
 
-void render_finite(const TetMesh& m, Projection proj, uint64_t min_rendered) {
+// camera: the automatic one for `proj` unless given; clip: the scene's
+// clip planes (tets and segments clipped must then be counted).
+void render_finite(const TetMesh& m, Projection proj, uint64_t min_rendered, const ClipRegion& clip = {},
+                   const Camera* camera = nullptr) {
   RenderSettings rs;
   rs.width = 160;
   rs.height = 120;
-  rs.camera = auto_camera(m, proj, rs.width, rs.height);
+  rs.camera = camera ? *camera : auto_camera(m, proj, rs.width, rs.height);
   rs.tf = default_transfer_function(m);
   rs.threads = 2;
+  rs.clip = clip;
   RenderStats st;
   const Topology topo = build_topology(m);
   const Image img = render_zsweep(m, topo, rs, &st);
@@ -32,6 +38,11 @@ void render_finite(const TetMesh& m, Projection proj, uint64_t min_rendered) {
   EXPECT_EQ(bad, 0u);
   EXPECT_GE(st.rendered_pixels, min_rendered);
   EXPECT_EQ(st.faces_clipped, 0u);
+  EXPECT_EQ(st.cell_data_tets > 0, m.has_cell_scalars());
+  if (!clip.empty()) {
+    EXPECT_GT(st.tets_clipped, 0u);
+    EXPECT_GT(st.segments_clipped, 0u);
+  }
   ReferenceStats rst;
   const Image ref = render_reference(m, topo, rs, rs.tf, &rst);
   const ImageDiff d = compare_images(img, ref);
@@ -59,6 +70,37 @@ TEST(RenderDatasets, PostVelocityMagnitude) {
   ZS_REQUIRE_SHARED(q, "postq.bin");
   const TetMesh m = read_mesh(xyz, {"velocity-magnitude", q});
   render_finite(m, Projection::Orthographic, 3000);
+}
+
+// An oblique plane through the fin and a crop box: what the planes keep,
+// with the plane's cut faces dark, as the reference cuts it.
+TEST(RenderDatasets, BluntFinClipped) {
+  ZS_REQUIRE_SHARED(xyz, "bluntfinxyz.bin");
+  ZS_REQUIRE_SHARED(q, "bluntfinq.bin");
+  const TetMesh m = read_mesh(xyz, {"density", q});
+  ClipRegion clip;
+  clip.planes.push_back({glm::dvec3(0.4, -1.0, 0.3), 2.5});
+  clip.add_box({-5, -1, -1}, {10, 9, 4.5});
+  render_finite(m, Projection::Perspective, 1000, clip);
+  render_finite(m, Projection::Orthographic, 1000, clip);
+}
+
+// kiefer's stress per cell, each tet at its cell's value, from an eye in no
+// face's plane (a ray in a face between cells may take either value).
+TEST(RenderDatasets, KieferCellData) {
+  ZS_REQUIRE_SHARED(p, "kiefer.vtu");
+  const TetMesh m = read_mesh(p);
+  ASSERT_TRUE(m.has_cell_scalars());
+  Camera cam;
+  cam.projection = Projection::Perspective;
+  cam.eye = {6.1, -8.3, 5.9};
+  cam.target = {0.05, 0.02, 1.6};
+  cam.up = {0, 0, 1};
+  cam.fov_y = 30;
+  render_finite(m, Projection::Perspective, 3000, {}, &cam);
+  ClipRegion clip;
+  clip.planes.push_back({glm::dvec3(1.0, 0.2, 0.1), -0.3});
+  render_finite(m, Projection::Perspective, 2000, clip, &cam);
 }
 
 }  // namespace

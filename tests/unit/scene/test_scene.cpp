@@ -49,7 +49,7 @@ TEST(Scene, ParsesEveryKey) {
 
 TEST(Scene, RejectsBadInputWithOneLine) {
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "camrea": {}})"),
-            "s.json: unknown key 'scene.camrea' (allowed: mesh, spheres, surfaces, image, camera, transfer_function, shading, render, ground, lights, shadows, ao)");
+            "s.json: unknown key 'scene.camrea' (allowed: mesh, spheres, surfaces, image, camera, transfer_function, shading, render, ground, lights, shadows, ao, clip, crop)");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"scan": "zigzag"}})"),
             "s.json: render.scan must be \"bbox\", \"bconvert\" or \"span\"");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"precision": "half"}})"),
@@ -64,6 +64,39 @@ TEST(Scene, RejectsBadInputWithOneLine) {
             "s.json: image.width must be an integer from 1 to 1048576");
   EXPECT_NE(error_of("{\"mesh\": \n 3,"), "");
   EXPECT_NE(error_of("{\"mesh\": \n 3,").find("s.json: invalid JSON"), std::string::npos);
+}
+
+TEST(Scene, ClipPlanesCropAndAssociation) {
+  const Scene s = parse_scene(R"({
+    "mesh": {"path": "m.vtu", "association": "cell_to_point"},
+    "clip": [{"plane": [0, 0, 2, -1]}, {"plane": [1, 1, 0, -0.5]}],
+    "crop": [-1, 1, -2, 2, 0, 3]
+  })", "s.json", "/base");
+  EXPECT_EQ(s.mesh_options.association, ScalarAssociation::CellToPoint);
+  ASSERT_EQ(s.settings.clip.planes.size(), 8u);
+  EXPECT_EQ(s.settings.clip.planes[0].n, glm::dvec3(0, 0, 2));
+  EXPECT_EQ(s.settings.clip.planes[0].d, -1.0);
+  double t0, t1;  // the z axis keeps z in [0, 0.5] (clip[0]) within the crop
+  ASSERT_TRUE(s.settings.clip.interval({0, 0, -5}, {0, 0, 1}, &t0, &t1));
+  EXPECT_DOUBLE_EQ(t0, 5.0);
+  EXPECT_DOUBLE_EQ(t1, 5.5);
+  EXPECT_FALSE(s.settings.clip.interval({5, 0, -5}, {0, 0, 1}, &t0, &t1));  // outside the crop's x
+  const glm::dvec3 out[4] = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {0, 0, 2}};  // all at z >= 0.5
+  EXPECT_TRUE(s.settings.clip.excludes(out, 4));
+  const glm::dvec3 in[4] = {{0, 0, 0.1}, {1, 0, 1}, {0, 1, 1}, {0, 0, 2}};
+  EXPECT_FALSE(s.settings.clip.excludes(in, 4));
+
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "clip": [{"plane": [0, 0, 0, 1]}]})"),
+            "s.json: clip[0].plane's normal (nx, ny, nz) must not be zero");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "clip": [{"plane": [0, 0, 1]}]})"),
+            "s.json: clip[0].plane must be [nx, ny, nz, d]");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "clip": {"plane": [0, 0, 1, 0]}})"),
+            "s.json: clip must be a list of {\"plane\": [nx, ny, nz, d]}");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "crop": [1, 0, 0, 1, 0, 1]})"), "s.json: crop's xmin must not exceed its max");
+  EXPECT_EQ(error_of(R"({"mesh": "a.off", "crop": [0, 1]})"), "s.json: crop must be [xmin, xmax, ymin, ymax, zmin, zmax]");
+  EXPECT_EQ(error_of(R"({"spheres": "a.pdb", "crop": [0, 1, 0, 1, 0, 1]})"), "s.json: 'crop' is for volume scenes");
+  EXPECT_EQ(error_of(R"({"mesh": {"path": "a.vtu", "association": "cells"}})"),
+            "s.json: mesh.association must be \"auto\", \"point\", \"cell\" or \"cell_to_point\"");
 }
 
 TEST(Scene, AcceptsParaViewPresetForColour) {

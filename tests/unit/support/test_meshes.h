@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "base/view/camera.h"
+#include "base/view/clip_region.h"
 #include "render/volume/render_settings.h"
 #include "base/optics/transfer_function.h"
 
@@ -53,9 +54,13 @@ inline void append_mesh(TetMesh& a, const TetMesh& b) {
   }
 }
 
-// Length of the ray o + t·d (t > 0) inside the box [lo, hi] (slab method).
-inline double box_chord(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi) {
+// Length of the ray o + t·d (t > 0) inside the box [lo, hi] (slab method),
+// and inside the clip region.
+inline double box_chord(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi, const ClipRegion& clip = {}) {
   double t0 = 0, t1 = 1e300;
+  double c0, c1;
+  if (!clip.interval(o, d, &c0, &c1)) return 0;
+  t0 = std::max(t0, c0), t1 = std::min(t1, c1);
   for (int a = 0; a < 3; ++a) {
     if (d[a] == 0) {
       if (o[a] < lo[a] || o[a] > hi[a]) return 0;
@@ -112,8 +117,9 @@ struct TwoRegions {
                              {value[1], color[1][0], color[1][1], color[1][2]}},
                             {{value[0], alpha[0]}, {value[1], alpha[1]}}, unit);
   }
-  // Premultiplied RGBA of the ray o + t·d, t > 0 (transparent background).
-  void expected(glm::dvec3 o, glm::dvec3 d, double out[4]) const {
+  // Premultiplied RGBA of the ray o + t·d, t > 0 (transparent background),
+  // the part of it the clip region keeps.
+  void expected(glm::dvec3 o, glm::dvec3 d, double out[4], const ClipRegion& clip = {}) const {
     glm::dvec3 hi0 = hi, lo1 = lo;
     hi0.x = lo1.x = x_mid();
     struct Piece {
@@ -125,6 +131,9 @@ struct TwoRegions {
     if (box_span(o, d, lo, hi0, &t0, &t1)) p[n++] = {t0, t1, 0};
     if (box_span(o, d, lo1, hi, &t0, &t1)) p[n++] = {t0, t1, 1};
     if (n == 2 && p[1].t0 < p[0].t0) std::swap(p[0], p[1]);
+    double c0, c1;
+    if (!clip.interval(o, d, &c0, &c1)) n = 0;
+    for (int k = 0; k < n; ++k) p[k].t0 = std::max(p[k].t0, c0), p[k].t1 = std::max(p[k].t0, std::min(p[k].t1, c1));
     double T = 1;
     out[0] = out[1] = out[2] = 0;
     for (int k = 0; k < n; ++k) {
