@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "app/scene_job.h"
+#include "app/scene_jobs.h"
+#include "raster/image_sink.h"
 #include "geometry/tets/topology.h"
 #include "geometry/tets/validate.h"
 #include "render/reference/reference_renderer.h"
@@ -80,10 +82,54 @@ ReferenceImage reference_spheres(SceneInput& in, uint32_t ao_samples) {
   return out;
 }
 
+// A mixed scene's geometry as the volume's reference sees it: spheres traced
+// by Embree (reference_spheres), surfaces drawn by their renderer with exact
+// shadow rays (their reference, as for surface scenes). RGBA and view depth
+// per pixel, its stats.
+struct UnderImage {
+  Image rgba;
+  std::vector<float> z;
+  nlohmann::json stats;
+};
+UnderImage reference_geometry(SceneInput& in) {
+  UnderImage u;
+  const RenderSettings& rs = in.scene.settings;
+  if (in.scene.with_spheres) {
+    const ReferenceImage r = reference_spheres(in, 0);
+    const size_t C = r.names.size(), n = size_t(r.width) * r.height;
+    u.rgba = Image(r.width, r.height);
+    u.z.resize(n);
+    for (size_t p = 0; p < n; ++p) {
+      for (int k = 0; k < 4; ++k) u.rgba.rgba[p * 4 + size_t(k)] = r.pixels[p * C + size_t(k)];
+      u.z[p] = r.pixels[p * C + 4];
+    }
+    u.stats = r.stats;
+    u.stats["renderer"] = "spheres (Embree)";
+    return u;
+  }
+  in.scene.surfaces.shadows.mode = ShadowMode::Exact;  // shadow rays, not maps: the surfaces' reference
+  std::unique_ptr<SceneJob> job = make_surface_job(in);
+  ImageSink sink(job->grid());
+  auto r = job->renderer(uint64_t(rs.width) * rs.height * 20, false);
+  r->render_tiles(sink, nullptr);
+  u.rgba = std::move(sink.image);
+  u.z = std::move(sink.z);
+  u.stats = job->stats(*r, FrameReport{});
+  u.stats["renderer"] = "surfaces (the renderer, exact shadows)";
+  return u;
+}
+
 ReferenceImage reference_volume(SceneInput& in) {
   const Topology topo = build_topology(in.mesh);
   ReferenceStats s;
-  Image img = render_reference(in.mesh, topo, in.scene.settings, in.scene.settings.tf, &s);
+  UnderImage geometry;
+  ReferenceUnder under;
+  if (in.scene.mixed()) {
+    geometry = reference_geometry(in);
+    under = {&geometry.rgba, geometry.z.data()};
+  }
+  Image img = render_reference(in.mesh, topo, in.scene.settings, in.scene.settings.tf, &s,
+                               in.scene.mixed() ? &under : nullptr);
   ReferenceImage out;
   out.width = img.width;
   out.height = img.height;
@@ -94,6 +140,10 @@ ReferenceImage reference_volume(SceneInput& in) {
                {"entries", s.entries},        {"lost_walks", s.lost_walks}, {"segments_clipped", s.segments_clipped}, {"flat_tets", s.flat_tets},
                {"boundary_faces", s.boundary_faces}, {"unbinned_faces", s.unbinned_faces},
                {"image", {{"width", out.width}, {"height", out.height}}}};
+  if (in.scene.mixed()) {
+    out.stats["rays_stopped_by_geometry"] = s.rays_stopped;
+    out.stats["geometry"] = geometry.stats;
+  }
   out.summary = line("%ux%u, %llu rays hit, %llu segments, %llu lost walks, %.1f ms", out.width, out.height,
                      (unsigned long long)s.rays_hit, (unsigned long long)s.segments,
                      (unsigned long long)s.lost_walks, s.ms_total) +

@@ -18,6 +18,10 @@ std::unique_ptr<SceneJob> make_scene_job(SceneInput& in, bool no_culling) {
     if (no_culling) in.scene.surfaces.cull_back = in.scene.surfaces.cull_view = false;
     return make_surface_job(in);
   }
+  if (in.scene.mixed()) {
+    if (no_culling) in.scene.surfaces.cull_back = in.scene.surfaces.cull_view = false;
+    return make_mixed_job(in, no_culling);
+  }
   return make_volume_job(in);
 }
 

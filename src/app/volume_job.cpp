@@ -118,6 +118,7 @@ nlohmann::json VolumeJob::stats(const TiledRenderer& r, const FrameReport& f) co
       {"cell_data_tets", S.cell_data_tets},
       {"tets_clipped", S.tets_clipped},
       {"segments_clipped", S.segments_clipped},
+      {"rays_stopped_by_geometry", S.rays_stopped},
       {"max_list_length", S.max_list_length},
       {"forced_composites", S.forced_composites},
       {"budget_flushes", S.budget_flushes},

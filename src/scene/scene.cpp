@@ -107,8 +107,9 @@ void parse_molecule_keys(const Ctx& c, const json& v, SphereScene* sp) {
   flag("hydrogens", &m.hydrogens);
 }
 
-// `spheres`, `shading` and the sphere `render` keys (docs/spheres.md).
-void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
+// `spheres`, `shading` and the sphere `render` keys (docs/spheres.md);
+// render_keys false: `render` is another renderer's (a volume's).
+void parse_spheres_block(const Ctx& c, const json& j, Scene* s, bool render_keys = true) {
   SphereScene& sp = s->spheres;
   const json& v = j["spheres"];
   if (v.is_string()) {
@@ -184,7 +185,7 @@ void parse_spheres_block(const Ctx& c, const json& j, Scene* s) {
       A.alpha_occluders = o == "alpha";
     }
   }
-  if (j.contains("render")) {
+  if (j.contains("render") && render_keys) {
     const json& r = j["render"];
     check_keys(c, r, "render",
                {"mode", "surfaces", "tolerance", "max_layers", "grid", "culling", "memory_budget_mb"});
@@ -311,20 +312,28 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   Scene s;
   RenderSettings& rs = s.settings;
 
-  const int kinds = int(j.contains("mesh")) + int(j.contains("spheres")) + int(j.contains("surfaces"));
-  if (kinds > 1) c.fail("a scene has one of 'mesh', 'spheres' or 'surfaces'");
-  if (kinds == 0) c.fail("missing 'mesh' (volume), 'spheres' or 'surfaces'");
+  const bool mesh = j.contains("mesh");
+  if (j.contains("spheres") && j.contains("surfaces"))
+    c.fail(mesh ? "a volume scene holds 'spheres' or 'surfaces' beside its mesh, not both"
+                : "a scene has one of 'mesh', 'spheres' or 'surfaces' (or a 'mesh' with one of the others)");
+  if (!mesh && !j.contains("spheres") && !j.contains("surfaces"))
+    c.fail("missing 'mesh' (volume), 'spheres' or 'surfaces'");
   if (!j.contains("surfaces"))
     for (const char* k : {"ground", "lights", "shadows"})
       if (j.contains(k)) c.fail(std::string("'") + k + "' is for surface scenes");
   if (j.contains("ao") && !j.contains("spheres")) c.fail("'ao' is for sphere scenes");
+  if (mesh && j.contains("render") && j["render"].is_object() && j["render"].contains("mode") && j.contains("spheres"))
+    c.fail("spheres inside a volume are opaque: translucent spheres (render.mode) would need the volume's segments "
+           "sorted against every sphere layer, which zsweep does not do");
   if (j.contains("surfaces")) {
-    s.kind = SceneKind::Surfaces;
-    if (j.contains("transfer_function")) c.fail("'transfer_function' is not for surface scenes");
-    parse_surface_blocks(c, j, &s);
+    s.kind = mesh ? SceneKind::Volume : SceneKind::Surfaces;
+    s.with_surfaces = mesh;
+    if (!mesh && j.contains("transfer_function")) c.fail("'transfer_function' is not for surface scenes");
+    parse_surface_blocks(c, j, &s, !mesh);
   } else if (j.contains("spheres")) {
-    s.kind = SceneKind::Spheres;
-    parse_spheres_block(c, j, &s);
+    s.kind = mesh ? SceneKind::Volume : SceneKind::Spheres;
+    s.with_spheres = mesh;
+    parse_spheres_block(c, j, &s, !mesh);
   } else if (j.contains("shading")) {
     c.fail("'shading' is for sphere and surface scenes");
   }

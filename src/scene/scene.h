@@ -15,7 +15,8 @@
 namespace zs {
 
 // Which renderer a scene is for: its top-level `mesh`, `spheres` or
-// `surfaces` key.
+// `surfaces` key (a `mesh` with `spheres` or `surfaces` is a volume scene
+// with geometry in it).
 enum class SceneKind { Volume, Spheres, Surfaces };
 
 // The sphere renderer's part of a scene (docs/spheres.md): the set, how it is
@@ -47,8 +48,12 @@ struct Scene {
   SphereScene spheres;    // kind == Spheres
   SurfaceScene surfaces;  // kind == Surfaces
   RenderSettings settings;
+  // A volume scene with opaque geometry inside it (docs/scene.md, "Volumes
+  // with geometry"): the spheres or surfaces parts above, drawn first.
+  bool with_spheres = false, with_surfaces = false;
   bool has_camera = false;             // false: frame the mesh automatically
   bool has_transfer_function = false;  // false: default ramp over the scalar range
+  bool mixed() const { return with_spheres || with_surfaces; }
 };
 
 // Throws std::runtime_error("FILE: what") for unreadable files, JSON syntax

@@ -33,20 +33,20 @@ Scene default_scene() {
 namespace {
 
 // The scene's mesh, sphere set or surfaces, from `data` or their files.
+void load_spheres(SceneInput& in, const SceneData* data, const MoleculeOverrides& molecule) {
+  const std::string& path = in.scene.spheres.path;
+  molecule.apply(in.scene.spheres.molecule);
+  in.spheres = data && data->spheres.count(path) ? data->spheres.at(path)
+                                                 : read_sphere_file(path, in.scene.spheres.molecule);
+  if (in.scene.spheres.radius_scale != 1.0)
+    for (double& r : in.spheres.radii) r *= in.scene.spheres.radius_scale;
+}
+
 void load_scene_data(SceneInput& in, const SceneData* data, const MoleculeOverrides& molecule) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (in.scene.kind == SceneKind::Spheres) {
-    const std::string& path = in.scene.spheres.path;
-    molecule.apply(in.scene.spheres.molecule);
-    in.spheres = data && data->spheres.count(path) ? data->spheres.at(path)
-                                                   : read_sphere_file(path, in.scene.spheres.molecule);
-    if (in.scene.spheres.radius_scale != 1.0)
-      for (double& r : in.spheres.radii) r *= in.scene.spheres.radius_scale;
-    in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return;
-  }
-  if (in.scene.kind == SceneKind::Surfaces) {
-    load_surfaces(in, data ? &data->surfaces : nullptr);
+  if (in.scene.kind == SceneKind::Spheres || in.scene.with_spheres) load_spheres(in, data, molecule);
+  if (in.scene.kind == SceneKind::Surfaces || in.scene.with_surfaces) load_surfaces(in, data ? &data->surfaces : nullptr);
+  if (in.scene.kind != SceneKind::Volume) {
     in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return;
   }

@@ -72,7 +72,7 @@ Light parse_light(const Ctx& c, const json& v, const std::string& where) {
 
 }  // namespace
 
-void parse_surface_blocks(const Ctx& c, const json& j, Scene* s) {
+void parse_surface_blocks(const Ctx& c, const json& j, Scene* s, bool render_keys) {
   SurfaceScene& ss = s->surfaces;
   const json& v = j["surfaces"];
   if (!v.is_array() || v.empty()) c.fail("surfaces must be a non-empty array of meshes");
@@ -159,7 +159,7 @@ void parse_surface_blocks(const Ctx& c, const json& j, Scene* s) {
       }
     }
   }
-  if (j.contains("render")) {
+  if (j.contains("render") && render_keys) {
     const json& r = j["render"];
     check_keys(c, r, "render", {"back_face_culling", "view_culling", "memory_budget_mb"});
     for (const char* k : {"back_face_culling", "view_culling"})

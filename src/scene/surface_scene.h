@@ -44,8 +44,9 @@ struct Ctx;
 struct Scene;
 
 // Parses a scene's `surfaces`, `ground`, `lights`, `shading`, `shadows` and
-// surface `render` keys into s->surfaces (throws as load_scene does).
-void parse_surface_blocks(const scene_json::Ctx& c, const nlohmann::json& j, Scene* s);
+// surface `render` keys into s->surfaces (throws as load_scene does);
+// render_keys false: `render` is another renderer's (a volume's).
+void parse_surface_blocks(const scene_json::Ctx& c, const nlohmann::json& j, Scene* s, bool render_keys = true);
 
 // The settings a SurfaceRenderer takes, from a scene's common and surface
 // parts (colours: the surfaces', then the ground's).

@@ -104,6 +104,29 @@ def test_clip_planes_match_the_cli(cli, tmp_path):
     assert not np.array_equal(img, zsweep.render(dict(VOLUME, mesh=g)))
 
 
+def test_volume_with_spheres_matches_the_cli(cli, tmp_path):
+    g = hex_grid()
+    path = tmp_path / "hex.vtu"
+    write_vtu(g, path)
+    centres, radii, scalar = np.array([[0.5, 0.5, 0.5], [0.2, 0.7, 0.3]]), np.array([0.2, 0.1]), np.array([0.3, 2.0])
+    (tmp_path / "s.sph").write_text("".join("%r %r %r %r %r\n" % (*c, r, v) for c, r, v in zip(centres, radii, scalar)))
+    rest = {"shading": {"model": "phong"}, "clip": [{"plane": [0, 0, 1, -0.8]}]}
+    scene = dict(VOLUME, mesh={"path": str(path), "scalar": "density"},
+                 spheres={"path": str(tmp_path / "s.sph"), "color": "scalar"}, **rest)
+    (tmp_path / "s.json").write_text(json.dumps(scene))
+    ref, _ = cli(tmp_path / "s.json")
+    img, st = zsweep.render_stats(dict(VOLUME, mesh={"data": g, "scalar": "density"},
+                                       spheres={"path": {"centers": centres, "radii": radii, "scalar": scalar},
+                                                "color": "scalar"}, **rest))
+    same(img, ref[:, :, :4])
+    assert st["rays_stopped_by_geometry"] > 0 and st["geometry"]["renderer"] == "spheres"
+    r, rst = zsweep.reference_stats(dict(VOLUME, mesh={"data": g, "scalar": "density"},
+                                         spheres={"path": {"centers": centres, "radii": radii, "scalar": scalar},
+                                                  "color": "scalar"}, **rest))
+    assert np.max(np.abs(r - img)) <= 1e-5
+    assert rst["rays_stopped_by_geometry"] > 0
+
+
 def test_stats_have_the_cli_keys(cli, tmp_path):
     img, st = zsweep.render_stats(dict(VOLUME, mesh=hex_grid()))
     for k in ("time_ms", "fragments", "rendered_pixels", "faces_projected", "mesh", "image", "tiles"):

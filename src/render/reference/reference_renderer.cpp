@@ -24,20 +24,21 @@ namespace zs {
 namespace {
 
 struct RowCounters {
-  uint64_t rays_hit = 0, segments = 0, tet_steps = 0, entries = 0, lost = 0, clipped = 0;
+  uint64_t rays_hit = 0, segments = 0, tet_steps = 0, entries = 0, lost = 0, clipped = 0, stopped = 0;
 };
 
 }  // namespace
 
 Image render_reference(const TetMesh& mesh, const Topology& topo, const FrameSettings& rs, const TransferFunction& tf,
-                       ReferenceStats* stats) {
+                       ReferenceStats* stats, const ReferenceUnder* under) {
   std::vector<uint32_t> rows(rs.height);
   for (uint32_t j = 0; j < rs.height; ++j) rows[j] = j;
-  return render_reference_rows(mesh, topo, rs, tf, rows, stats);
+  return render_reference_rows(mesh, topo, rs, tf, rows, stats, under);
 }
 
 Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const FrameSettings& rs,
-                            const TransferFunction& tf, const std::vector<uint32_t>& rows_wanted, ReferenceStats* stats) {
+                            const TransferFunction& tf, const std::vector<uint32_t>& rows_wanted, ReferenceStats* stats,
+                            const ReferenceUnder* under) {
   const auto t_start = std::chrono::steady_clock::now();
   // The reference keeps its rows in memory: refuse what the budget cannot
   // hold before allocating it.
@@ -72,6 +73,10 @@ Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const Fra
         // The part of the ray the clip planes keep (everything: ±inf).
         double t_lo, t_hi;
         if (!rs.clip.interval(o, d, &t_lo, &t_hi)) hits.clear();
+        // Opaque geometry: the ray stops at its view depth (ray length = depth · factor).
+        const size_t pix = size_t(j) * rs.width + i;
+        const float zu = under ? under->z[pix] : INFINITY;
+        if (std::isfinite(zu)) t_hi = std::min(t_hi, double(zu) * view.ray_length_factor(double(i), double(j)));
         double rgb[3] = {0, 0, 0}, T = 1.0;
         double t_done = -INFINITY;  // the line is integrated (or walked) up to here
         bool hit = false;
@@ -104,9 +109,13 @@ Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const Fra
           t_done = std::max(t_done, w.t_exit);
         }
         c.rays_hit += hit;
+        c.stopped += hit && std::isfinite(zu);
         float* out = img.at(i, row);
-        for (int k = 0; k < 3; ++k) out[k] = float(rgb[k] + T * rs.background[k]);
-        out[3] = float((1.0 - T) + T * rs.background[3]);
+        double bg[4] = {rs.background[0], rs.background[1], rs.background[2], rs.background[3]};
+        if (under)
+          for (int k = 0; k < 4; ++k) bg[k] = under->rgba->rgba[pix * 4 + size_t(k)];
+        for (int k = 0; k < 3; ++k) out[k] = float(rgb[k] + T * bg[k]);
+        out[3] = float((1.0 - T) + T * bg[3]);
       }
   };
   {
@@ -122,6 +131,7 @@ Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const Fra
       stats->entries += c.entries;
       stats->lost_walks += c.lost;
       stats->segments_clipped += c.clipped;
+      stats->rays_stopped += c.stopped;
     }
     stats->boundary_faces = bins.num_faces();
     for (uint8_t f : solid.flat) stats->flat_tets += f;

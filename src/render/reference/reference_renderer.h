@@ -29,19 +29,29 @@ struct ReferenceStats {
   uint64_t tet_steps = 0;       // tets visited (including behind the eye)
   uint64_t entries = 0;         // walks started at a boundary entry
   uint64_t segments_clipped = 0;  // segments cut or dropped by the clip planes
+  uint64_t rays_stopped = 0;    // mixed scenes: rays through the mesh that meet opaque geometry
   uint64_t lost_walks = 0;      // walks that found no exit (the rest of that line re-enters at the next boundary face)
   uint64_t flat_tets = 0;       // zero-volume tets, left out of the solid mesh
   uint64_t boundary_faces = 0, unbinned_faces = 0;
 };
 
-// Honours width, height, camera, background, transfer function and threads;
-// the integrator is always exact, and no early termination is applied.
+// Opaque geometry under the volume (mixed scenes), per pixel of the whole
+// image: its colour over the background and its view depth (+inf: none).
+// Each ray stops at that depth and the volume is composited over the colour.
+struct ReferenceUnder {
+  const Image* rgba = nullptr;
+  const float* z = nullptr;
+};
+
+// Honours width, height, camera, background, clip planes, transfer function
+// and threads; the integrator is always exact, and no early termination is
+// applied.
 Image render_reference(const TetMesh& mesh, const Topology& topo, const FrameSettings& frame,
-                       const TransferFunction& tf, ReferenceStats* stats);
+                       const TransferFunction& tf, ReferenceStats* stats, const ReferenceUnder* under = nullptr);
 // Only the listed rows of the full image (row k of the result is image row
 // rows[k]): checks of huge renders sample rows instead of casting every ray.
 Image render_reference_rows(const TetMesh& mesh, const Topology& topo, const FrameSettings& frame,
                             const TransferFunction& tf, const std::vector<uint32_t>& rows,
-                            ReferenceStats* stats);
+                            ReferenceStats* stats, const ReferenceUnder* under = nullptr);
 
 }  // namespace zs

@@ -13,7 +13,8 @@ struct RenderStats {
   uint64_t tets_invisible = 0, tets_degenerate = 0;
   uint64_t cell_data_tets = 0;  // visible tets carrying one (cell) value each
   uint64_t tets_clipped = 0;    // wholly outside a clip plane (not projected)
-  uint64_t segments_clipped = 0;  // segments cut or dropped by the clip planes
+  uint64_t segments_clipped = 0;  // segments cut or dropped by the clip planes or opaque geometry
+  uint64_t rays_stopped = 0;      // mixed scenes: pixels with volume fragments whose ray meets opaque geometry
   uint64_t max_list_length = 0, forced_composites = 0, budget_flushes = 0;
   uint64_t composite_events = 0, segments = 0, early_terminated_pixels = 0;
   uint64_t peak_fragments = 0, peak_rss_bytes = 0, memory_budget_bytes = 0;

@@ -23,10 +23,11 @@ double ms_between(Clock::time_point a, Clock::time_point b) {
 // The sweep of one tile, with its state in one place.
 class TileSweep {
  public:
-  TileSweep(const SweepShared& in, const Viewport& vp, uint64_t max_fragments, TileWorkspace& ws, RenderStats& S)
+  TileSweep(const SweepShared& in, uint32_t tile, const Viewport& vp, uint64_t max_fragments, TileWorkspace& ws,
+            RenderStats& S)
       : in_(in), rs_(in.rs), vp_(vp), vw_(uint32_t(vp.x1 - vp.x0)), ws_(ws), S_(S),
         npix_(size_t(vw_) * uint32_t(vp.y1 - vp.y0)), records_(prepare(ws, npix_)),
-        clip_(clip_for(in, vp, vw_, npix_, ws)),
+        under_(in.under ? in.under->tile(tile) : nullptr), clip_(clip_for(in, under_, vp, vw_, npix_, ws)),
         comp_(in.view, in.integ, rs_.early_termination > 0 ? rs_.early_termination / 510.0 : 0.0,
               batch_for(in, ws), records_, ws.light.data(), in.cell != nullptr,  // after prepare() sized ws.light
               clip_),
@@ -48,17 +49,25 @@ class TileSweep {
           in.rs.single_precision ? KernelPrecision::Single : KernelPrecision::Double);
     return ws.batch.get();
   }
-  // The depth interval each pixel's ray keeps of the clip region, relative
-  // to z_origin as fragments are (null: no clip planes).
-  static const float* clip_for(const SweepShared& in, const Viewport& vp, uint32_t vw, size_t npix, TileWorkspace& ws) {
+  // The depth interval each pixel's ray keeps of the clip region, up to the
+  // opaque geometry under it, relative to z_origin as fragments are (null:
+  // neither).
+  static const float* clip_for(const SweepShared& in, const float* under, const Viewport& vp, uint32_t vw,
+                               size_t npix, TileWorkspace& ws) {
     const ClipRegion& region = in.rs.clip;
-    if (region.empty()) return nullptr;
+    if (region.empty() && !under) return nullptr;
+    const uint32_t stride = under ? in.under->stride() : 0;
     ws.clip.resize(2 * npix);
     for (size_t p = 0; p < npix; ++p) {
-      glm::dvec3 at, per;
-      in.view.depth_line(double(vp.x0 + int(p % vw)), double(vp.y0 + int(p / vw)), &at, &per);
-      double lo, hi;
-      const bool kept = region.interval(at, per, &lo, &hi);
+      double lo = -INFINITY, hi = INFINITY;
+      bool kept = true;
+      if (!region.empty()) {
+        glm::dvec3 at, per;
+        in.view.depth_line(double(vp.x0 + int(p % vw)), double(vp.y0 + int(p / vw)), &at, &per);
+        kept = region.interval(at, per, &lo, &hi);
+      }
+      if (under) hi = std::min(hi, double(under[p * stride + 4]));  // the ray stops at the geometry
+      kept = kept && lo <= hi;
       ws.clip[2 * p] = kept ? float(lo - in.z_origin) : INFINITY;
       ws.clip[2 * p + 1] = kept ? float(hi - in.z_origin) : -INFINITY;
     }
@@ -351,22 +360,36 @@ class TileSweep {
     S_.bbox_area += (st.max_x - st.min_x) * (st.max_y - st.min_y);
   }
 
-  // out = I + (1 - alpha)·background, alpha = 1 - T (premultiplied).
+  // out = I + (1 - alpha)·background, alpha = 1 - T (premultiplied), where
+  // the background is the opaque layer's colour in a mixed scene.
   // Untouched pixels (rgb 0, T 1) are the background exactly; touched ones
   // are computed, and their records reset for the next tile.
   void finish() {
     ws_.out.resize(npix_ * 4);
     const double* bg = rs_.background;
     float* const out = ws_.out.data();
-    const float b[4] = {float(bg[0]), float(bg[1]), float(bg[2]), float(bg[3])};
-    for (size_t p = 0; p < npix_; ++p)
-      for (int k = 0; k < 4; ++k) out[p * 4 + k] = b[k];
+    const uint32_t stride = under_ ? in_.under->stride() : 0;
+    if (under_) {
+      for (size_t p = 0; p < npix_; ++p)
+        for (int k = 0; k < 4; ++k) out[p * 4 + k] = under_[p * stride + k];
+    } else {
+      const float b[4] = {float(bg[0]), float(bg[1]), float(bg[2]), float(bg[3])};
+      for (size_t p = 0; p < npix_; ++p)
+        for (int k = 0; k < 4; ++k) out[p * 4 + k] = b[k];
+    }
     for (uint32_t p : ws_.touched) {
       PixelLight& l = ws_.light[p];
       const double T = l.T;
       float* o = &out[size_t(p) * 4];
-      for (int k = 0; k < 3; ++k) o[k] = float(l.rgb[k] + T * bg[k]);
-      o[3] = float((1.0 - T) + T * bg[3]);
+      if (under_) {
+        const float* u = under_ + size_t(p) * stride;
+        for (int k = 0; k < 3; ++k) o[k] = float(l.rgb[k] + T * double(u[k]));
+        o[3] = float((1.0 - T) + T * double(u[3]));
+        S_.rays_stopped += std::isfinite(u[4]);
+      } else {
+        for (int k = 0; k < 3; ++k) o[k] = float(l.rgb[k] + T * bg[k]);
+        o[3] = float((1.0 - T) + T * bg[3]);
+      }
       if (T < 1.0) ++S_.rendered_pixels;
       ws_.px[p].reset();
       l.reset();
@@ -382,6 +405,7 @@ class TileSweep {
   RenderStats& S_;
   size_t npix_;  // this tile's pixels (the first npix_ records)
   PixelRecord* records_;
+  const float* under_;  // the tile's opaque layer (mixed scenes), or null
   const float* clip_;
   Compositor comp_;
   bool timed_;
@@ -392,7 +416,7 @@ class TileSweep {
 
 void sweep_tile(const SweepShared& in, uint32_t tile, const Viewport& vp, uint64_t max_fragments, TileWorkspace& ws,
                 RenderStats& stats) {
-  TileSweep(in, vp, max_fragments, ws, stats).run(tile);
+  TileSweep(in, tile, vp, max_fragments, ws, stats).run(tile);
 }
 
 }  // namespace zs

@@ -15,6 +15,7 @@
 #include "base/view/camera.h"
 #include "render/volume/face_classes.h"
 #include "render/volume/near_clip.h"
+#include "render/volume/opaque_layer.h"
 #include "render/volume/pixel_lists.h"
 #include "render/volume/render_settings.h"
 #include "render/volume/segment_batch.h"
@@ -39,6 +40,7 @@ struct SweepShared {
   TileBins bins;
   double z_origin = 0;  // fragments store depth - z_origin
   const double* cell = nullptr;  // cell data: one value per tet (face_classes.h); null for point data
+  const OpaqueLayer* under = nullptr;  // opaque geometry under the volume (mixed scenes), or null
 };
 
 // A bin entry staged for the sweep: its item with its screen triangle.
@@ -66,7 +68,7 @@ struct alignas(128) TileWorkspace {
   FaceFragments frags;  // the benchmarks' timed path only
   std::unique_ptr<TriangleScanner> scanner;  // the render's scan strategy, with its scratch
   std::vector<float> out;  // the finished tile, RGBA
-  std::vector<float> clip;  // per pixel, the depth interval the clip planes keep (clip planes only)
+  std::vector<float> clip;  // per pixel, the depth interval the clip planes and opaque geometry keep
   std::vector<StagedItem> staged = std::vector<StagedItem>(kStage);
   std::unique_ptr<SegmentBatch> batch;  // exact integrator without early termination
 };

@@ -53,6 +53,7 @@ void add_stats(RenderStats& a, const RenderStats& b) {
   a.composite_events += b.composite_events;
   a.segments += b.segments;
   a.segments_clipped += b.segments_clipped;
+  a.rays_stopped += b.rays_stopped;
   a.early_terminated_pixels += b.early_terminated_pixels;
   a.peak_fragments = std::max(a.peak_fragments, b.peak_fragments);  // per tile
   a.peak_overflow_fragments = std::max(a.peak_overflow_fragments, b.peak_overflow_fragments);
@@ -246,6 +247,8 @@ const TileGrid& ZSweepRenderer::grid() const { return impl_->grid; }
 const RenderStats& ZSweepRenderer::setup_stats() const { return impl_->setup; }
 
 int ZSweepRenderer::threads() const { return std::max(1, impl_->rs.threads); }
+
+void ZSweepRenderer::set_opaque_layer(const OpaqueLayer* layer) { impl_->in.under = layer; }
 
 void ZSweepRenderer::render_tiles(TileSink& sink, const std::vector<uint32_t>* tiles, RenderStats* stats) {
   Impl& I = *impl_;

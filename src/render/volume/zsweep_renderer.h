@@ -21,6 +21,7 @@
 #include "geometry/tets/topology.h"
 #include "raster/image.h"
 #include "raster/tiled_renderer.h"
+#include "render/volume/opaque_layer.h"
 #include "render/volume/render_plan.h"
 #include "render/volume/render_settings.h"
 #include "render/volume/render_stats.h"
@@ -54,6 +55,10 @@ class ZSweepRenderer : public TiledRenderer {
   void render_tiles(TileSink& sink, const std::vector<uint32_t>* tiles) override;
   std::vector<uint8_t> tile_totals() const override;
   void add_tile_totals(const std::vector<uint8_t>& other) override;
+
+  // Mixed scenes: the opaque geometry under the volume for the following
+  // render_tiles calls (null: none, the background); it must outlive them.
+  void set_opaque_layer(const OpaqueLayer* layer);
 
   // Setup counts and times (classification, order, bins, plan).
   const RenderStats& setup_stats() const;
