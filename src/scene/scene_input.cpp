@@ -44,20 +44,18 @@ void load_spheres(SceneInput& in, const SceneData* data, const MoleculeOverrides
 
 void load_scene_data(SceneInput& in, const SceneData* data, const MoleculeOverrides& molecule) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (in.scene.kind == SceneKind::Volume) {  // first: a volume's surfaces may be made of its mesh
+    const std::string& path = in.scene.mesh_path;
+    if (data && data->meshes.count(path)) {
+      in.mesh = data->meshes.at(path);
+    } else {
+      in.mesh = path.empty() ? default_mesh() : read_mesh(path, in.scene.mesh_options);
+    }
+    if (in.mesh.num_tets() == 0) throw std::runtime_error(path + ": mesh has no tets");
+  }
   if (in.scene.kind == SceneKind::Spheres || in.scene.with_spheres) load_spheres(in, data, molecule);
   if (in.scene.kind == SceneKind::Surfaces || in.scene.with_surfaces) load_surfaces(in, data ? &data->surfaces : nullptr);
-  if (in.scene.kind != SceneKind::Volume) {
-    in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return;
-  }
-  const std::string& path = in.scene.mesh_path;
-  if (data && data->meshes.count(path)) {
-    in.mesh = data->meshes.at(path);
-  } else {
-    in.mesh = path.empty() ? default_mesh() : read_mesh(path, in.scene.mesh_options);
-  }
   in.ms_load = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (in.mesh.num_tets() == 0) throw std::runtime_error(path + ": mesh has no tets");
 }
 
 }  // namespace
@@ -74,7 +72,9 @@ SceneInput load_scene_input(const std::string& input, const ReadOptions& mesh_op
     in.scene.spheres.path = input;
   } else if (is_surface_file(input)) {
     in.scene.kind = SceneKind::Surfaces;
-    in.scene.surfaces.surfaces.push_back({input});
+    SurfaceEntry e;
+    e.path = input;
+    in.scene.surfaces.surfaces.push_back(e);
     in.scene.surfaces.ground = in.scene.surfaces.ground_auto_height = true;
   } else {
     in.scene.mesh_path = input;

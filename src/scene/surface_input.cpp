@@ -8,6 +8,7 @@
 
 #include "geometry/triangles/closed_solids.h"
 #include "geometry/triangles/ground_height.h"
+#include "geometry/triangles/io/mesh_surfaces.h"
 #include "geometry/triangles/io/surface_reader.h"
 
 namespace zs {
@@ -32,7 +33,11 @@ void load_surfaces(SceneInput& in, const std::map<std::string, TriangleMesh>* da
   for (size_t i = 0; i < ss.surfaces.size(); ++i) {
     const SurfaceEntry& e = ss.surfaces[i];
     SurfaceReadCounts rc;
-    TriangleMesh m = data && data->count(e.path) ? data->at(e.path) : read_surface(e.path, &rc);
+    const std::string mesh_name = in.scene.mesh_path.empty() ? "default mesh" : in.scene.mesh_path;
+    TriangleMesh m = e.source == SurfaceSource::Boundary     ? boundary_surface(in.mesh, mesh_name)
+                     : e.source == SurfaceSource::Isosurface ? isosurfaces(in.mesh, e.iso_values, mesh_name)
+                     : data && data->count(e.path)           ? data->at(e.path)
+                                                             : read_surface(e.path, &rc);
     in.surface_polygons_split += rc.split;
     in.surface_elements_dropped += rc.dropped;
     for (glm::dvec3& p : m.points) p = e.translate + rotate(e.scale * p, e.rotate_deg);

@@ -20,15 +20,30 @@ glm::dvec3 color3(const Ctx& c, const json& v, const std::string& where) {
   return col;
 }
 
-SurfaceEntry parse_entry(const Ctx& c, const json& v, const std::string& where) {
+// volume: the scene has a mesh, whose boundary and isosurfaces an entry may be.
+SurfaceEntry parse_entry(const Ctx& c, const json& v, const std::string& where, bool volume) {
   SurfaceEntry e;
   if (v.is_string()) {
     e.path = c.resolve(v.get<std::string>());
     return e;
   }
-  check_keys(c, v, where, {"path", "color", "transform"});
-  if (!v.contains("path") || !v["path"].is_string()) c.fail(where + ".path must be a string");
-  e.path = c.resolve(v["path"].get<std::string>());
+  check_keys(c, v, where, {"path", "boundary", "isosurface", "color", "transform"});
+  const int sources = int(v.contains("path")) + int(v.contains("boundary")) + int(v.contains("isosurface"));
+  if (sources != 1) c.fail(where + " needs one of 'path', 'boundary' (the mesh's) or 'isosurface' (of its scalar)");
+  if (!volume && !v.contains("path"))
+    c.fail(where + (v.contains("boundary") ? ".boundary" : ".isosurface") + " is for a volume scene's mesh");
+  if (v.contains("boundary")) {
+    if (!(v["boundary"].is_boolean() && v["boundary"].get<bool>())) c.fail(where + ".boundary must be true");
+    e.source = SurfaceSource::Boundary;
+  } else if (v.contains("isosurface")) {
+    const json& iso = v["isosurface"];
+    if (!iso.is_array() || iso.empty()) c.fail(where + ".isosurface must be a non-empty list of scalar values");
+    for (size_t i = 0; i < iso.size(); ++i) e.iso_values.push_back(num(c, iso[i], where + ".isosurface[" + std::to_string(i) + "]"));
+    e.source = SurfaceSource::Isosurface;
+  } else {
+    if (!v["path"].is_string()) c.fail(where + ".path must be a string");
+    e.path = c.resolve(v["path"].get<std::string>());
+  }
   if (v.contains("color")) e.color = color3(c, v["color"], where + ".color");
   if (v.contains("transform")) {
     const json& t = v["transform"];
@@ -76,7 +91,8 @@ void parse_surface_blocks(const Ctx& c, const json& j, Scene* s, bool render_key
   SurfaceScene& ss = s->surfaces;
   const json& v = j["surfaces"];
   if (!v.is_array() || v.empty()) c.fail("surfaces must be a non-empty array of meshes");
-  for (size_t i = 0; i < v.size(); ++i) ss.surfaces.push_back(parse_entry(c, v[i], "surfaces[" + std::to_string(i) + "]"));
+  for (size_t i = 0; i < v.size(); ++i)
+    ss.surfaces.push_back(parse_entry(c, v[i], "surfaces[" + std::to_string(i) + "]", !render_keys));
   if (j.contains("ground")) {
     const json& g = j["ground"];
     if (g.is_boolean()) {

@@ -16,8 +16,15 @@
 
 namespace zs {
 
+// Where a surface comes from: a triangle file (or data), or — inside a volume
+// scene — the volume's mesh: its boundary, or isosurfaces of its scalar
+// (geometry/triangles/io/mesh_surfaces.h).
+enum class SurfaceSource { File, Boundary, Isosurface };
+
 struct SurfaceEntry {
-  std::string path;  // resolved against the scene's directory
+  SurfaceSource source = SurfaceSource::File;
+  std::string path;  // resolved against the scene's directory (File)
+  std::vector<double> iso_values;  // Isosurface
   glm::dvec3 color{0.8, 0.8, 0.8};
   // p' = translate + R·(scale·p), R = Rz·Ry·Rx of rotate_deg (x first).
   glm::dvec3 translate{0.0}, rotate_deg{0.0};

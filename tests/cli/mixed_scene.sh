@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# A volume with opaque geometry inside: spheres (flat) and a triangle file
-# (lit, exact shadows: the surfaces' reference) in a grid mesh, with a clip
-# plane. render and reference
+# A volume with opaque geometry inside: spheres (flat), a triangle file, and
+# an isosurface of the mesh's scalar with its (scaled) boundary (lit, exact
+# shadows: the surfaces' reference) in a grid mesh, with a clip plane. render and reference
 # agree (float images, within 1e-5), --stats counts the rays the geometry
 # stopped and carries the geometry's own stats; --mpi gives the same image;
 # the geometry changes the image; translucent spheres in a volume are
@@ -21,7 +21,9 @@ printf '{"mesh": "%s", "spheres": {"path": "%s", "color": "scalar"}, "shading": 
 printf '{"mesh": "%s", "surfaces": [{"path": "%s", "transform": {"scale": 0.6, "translate": [-0.3, -0.3, -0.3]}}],
   "shadows": {"mode": "exact"}, %s}' \
   "$tmp/g.zsm" "$src/tests/data/surfaces/cube.off" "$common" > surfaces.json
-for s in spheres surfaces; do
+printf '{"mesh": "%s", "surfaces": [{"isosurface": [0.35], "color": [0.9, 0.8, 0.2]}, {"boundary": true,
+  "transform": {"scale": 1.2}}], "shadows": {"mode": "exact"}, %s}' "$tmp/g.zsm" "$common" > iso.json
+for s in spheres surfaces iso; do
   "$zsweep" render $s.json -o $s.exr --stats $s.st.json >/dev/null || { echo "FAIL: render $s"; fail=1; continue; }
   "$zsweep" reference $s.json -o $s.ref.exr --stats $s.ref.json >/dev/null || { echo "FAIL: reference $s"; fail=1; continue; }
   max=$("$zsweep" compare $s.exr $s.ref.exr --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["max_abs"])')
@@ -29,7 +31,8 @@ for s in spheres surfaces; do
   python3 - $s.st.json $s <<'PY' || fail=1
 import json, sys
 st = json.load(open(sys.argv[1]))
-if not (st["rays_stopped_by_geometry"] > 0 and st["geometry"]["renderer"] == sys.argv[2]):
+want = "spheres" if sys.argv[2] == "spheres" else "surfaces"
+if not (st["rays_stopped_by_geometry"] > 0 and st["geometry"]["renderer"] == want):
     print("FAIL:", sys.argv[2], "stats", st["rays_stopped_by_geometry"], st["geometry"].get("renderer")); sys.exit(1)
 PY
 done
@@ -47,5 +50,13 @@ printf '{"mesh": "%s", "spheres": "%s", "render": {"mode": "weighted"}, %s}' "$t
 "$zsweep" render t.json -o t.png >out.txt 2>err.txt; rc=$?
 [ $rc -ne 0 ] && [ "$(wc -l <err.txt)" -eq 1 ] && [ ! -e t.png ] && grep -q "spheres inside a volume are opaque" err.txt \
   || { echo "FAIL: translucent spheres in a volume: exit $rc: $(cat err.txt)"; fail=1; }
+printf '{"mesh": "%s", "surfaces": [{"isosurface": [99]}], %s}' "$tmp/g.zsm" "$common" > noiso.json
+"$zsweep" render noiso.json -o noiso.png >out.txt 2>err.txt; rc=$?
+[ $rc -ne 0 ] && [ "$(wc -l <err.txt)" -eq 1 ] && [ ! -e noiso.png ] && grep -q "g.zsm: no isosurface: the scalar" err.txt \
+  || { echo "FAIL: an isosurface the scalar never takes: exit $rc: $(cat err.txt)"; fail=1; }
+printf '{"surfaces": [{"boundary": true}]}' > nomesh.json
+"$zsweep" render nomesh.json -o nomesh.png >out.txt 2>err.txt; rc=$?
+[ $rc -ne 0 ] && grep -q "surfaces\[0\].boundary is for a volume scene's mesh" err.txt \
+  || { echo "FAIL: a boundary without a mesh: exit $rc: $(cat err.txt)"; fail=1; }
 [ $fail -eq 0 ] && echo "mixed scenes: ok"
 exit $fail

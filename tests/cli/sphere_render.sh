@@ -85,7 +85,7 @@ bad() {  # name json expected-substring
     echo "FAIL $1: rc $rc, stderr: $(cat "$tmp/err")"; fail=1
   fi
 }
-bad both '{"mesh": "m.off", "spheres": "set.sph"}' "one of 'mesh', 'spheres' or 'surfaces'"
+bad both '{"spheres": "set.sph", "surfaces": ["c.obj"]}' "one of 'mesh', 'spheres' or 'surfaces'"
 bad shading_on_volume '{"mesh": "m.off", "shading": {}}' "'shading' is for sphere and surface scenes"
 bad unknown_key '{"spheres": "set.sph", "render": {"scan": "span"}}' "render"
 bad bad_mode '{"spheres": "set.sph", "render": {"mode": "glass"}}' "render.mode must be"

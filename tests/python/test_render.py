@@ -127,6 +127,18 @@ def test_volume_with_spheres_matches_the_cli(cli, tmp_path):
     assert rst["rays_stopped_by_geometry"] > 0
 
 
+def test_volume_with_its_isosurface_matches_the_cli(cli, tmp_path):
+    g = hex_grid()
+    path = tmp_path / "hex.vtu"
+    write_vtu(g, path)
+    rest = {"surfaces": [{"isosurface": [1.5], "color": [0.9, 0.7, 0.2]}], "shadows": {"mode": "exact"}}
+    (tmp_path / "s.json").write_text(json.dumps(dict(VOLUME, mesh={"path": str(path), "scalar": "density"}, **rest)))
+    ref, _ = cli(tmp_path / "s.json")
+    img, st = zsweep.render_stats(dict(VOLUME, mesh={"data": g, "scalar": "density"}, **rest))
+    same(img, ref[:, :, :4])
+    assert st["geometry"]["triangles"]["total"] > 0
+
+
 def test_stats_have_the_cli_keys(cli, tmp_path):
     img, st = zsweep.render_stats(dict(VOLUME, mesh=hex_grid()))
     for k in ("time_ms", "fragments", "rendered_pixels", "faces_projected", "mesh", "image", "tiles"):

@@ -304,7 +304,7 @@ std::string sphere_scene_error(const std::string& json) {
 
 TEST(Scene, SphereSceneErrors) {
   const auto err = &sphere_scene_error;
-  EXPECT_NE(err(R"({"mesh": "m.off", "spheres": "a.sph"})").find("one of 'mesh', 'spheres' or 'surfaces'"), std::string::npos);
+  EXPECT_NE(err(R"({"surfaces": ["c.obj"], "spheres": "a.sph"})").find("one of 'mesh', 'spheres' or 'surfaces'"), std::string::npos);
   EXPECT_NE(err(R"({"image": {}})").find("missing 'mesh' (volume), 'spheres' or 'surfaces'"), std::string::npos);
   EXPECT_NE(err(R"({"spheres": {"path": "a.sph", "radius_scale": 0}})").find("radius_scale"), std::string::npos);
   EXPECT_NE(err(R"({"spheres": "a.sph", "shading": {"model": "toon"}})").find("shading.model"), std::string::npos);

@@ -1,4 +1,5 @@
 #include "geometry/triangles/io/surface_reader.h"
+#include "geometry/triangles/io/polydata_triangles.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -27,18 +28,8 @@ namespace zs {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-void check_file(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw FileError(path, "no such file");
-  if (fs::is_directory(path, ec)) throw FileError(path, "is a directory, not a surface file");
-  if (!std::ifstream(path, std::ios::binary)) throw FileError(path, "cannot open file");
-  if (fs::file_size(path, ec) == 0) throw FileError(path, "empty file");
-}
-
 // Splits every polygon of `pd` with vtkTriangleFilter and copies the triangles.
-TriangleMesh from_polydata(vtkPolyData* pd, const std::string& path, SurfaceReadCounts* counts) {
+TriangleMesh triangles_of_polydata(vtkPolyData* pd, const std::string& path, SurfaceReadCounts* counts) {
   SurfaceReadCounts c;
   if (vtkCellArray* polys = pd->GetPolys()) {
     auto it = vtk::TakeSmartPointer(polys->NewIterator());
@@ -87,6 +78,16 @@ TriangleMesh from_polydata(vtkPolyData* pd, const std::string& path, SurfaceRead
   return m;
 }
 
+namespace {
+
+void check_file(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw FileError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw FileError(path, "is a directory, not a surface file");
+  if (!std::ifstream(path, std::ios::binary)) throw FileError(path, "cannot open file");
+  if (fs::file_size(path, ec) == 0) throw FileError(path, "empty file");
+}
+
 TriangleMesh read_off_surface(const std::string& path, SurfaceReadCounts* counts) {
   using P = CGAL::Simple_cartesian<double>::Point_3;
   std::vector<P> points;
@@ -113,7 +114,7 @@ TriangleMesh read_off_surface(const std::string& path, SurfaceReadCounts* counts
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(vp);
   pd->SetPolys(cells);
-  return from_polydata(pd, path, counts);
+  return triangles_of_polydata(pd, path, counts);
 }
 
 template <class Reader>
@@ -140,7 +141,7 @@ TriangleMesh read_with(const std::string& path, SurfaceReadCounts* counts) {
                                     std::to_string(ids[k]) + " of " + std::to_string(np));
     }
   }
-  return from_polydata(pd, path, counts);
+  return triangles_of_polydata(pd, path, counts);
 }
 
 }  // namespace
