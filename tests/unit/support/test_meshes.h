@@ -12,6 +12,7 @@
 
 #include "base/view/camera.h"
 #include "base/view/clip_region.h"
+#include "raster/image.h"
 #include "render/volume/render_settings.h"
 #include "base/optics/transfer_function.h"
 
@@ -72,6 +73,23 @@ inline double box_chord(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi
     t1 = std::min(t1, tb);
   }
   return t1 > t0 ? t1 - t0 : 0;
+}
+
+// The ray through pixel centre (i, j), straight from the scene spec (kept
+// independent of the renderers' View class on purpose).
+inline void spec_ray(const Camera& c, uint32_t W, uint32_t H, int i, int j, glm::dvec3* o, glm::dvec3* d) {
+  const glm::dvec3 f = glm::normalize(c.target - c.eye);
+  const glm::dvec3 r = glm::normalize(glm::cross(f, c.up));
+  const glm::dvec3 u = glm::cross(r, f);
+  const double a = (i + 0.5) / W - 0.5, b = 0.5 - (j + 0.5) / H;
+  if (c.projection == Projection::Orthographic) {
+    *o = c.eye + a * c.height * W / H * r + b * c.height * u;
+    *d = f;
+  } else {
+    const double t = std::tan(c.fov_y * M_PI / 360.0);
+    *o = c.eye;
+    *d = glm::normalize(f + a * 2 * t * W / H * r + b * 2 * t * u);
+  }
 }
 
 // Entry and exit of the ray o + t·d (t > 0) in the box [lo, hi]; false if it
@@ -144,24 +162,21 @@ struct TwoRegions {
     }
     out[3] = 1 - T;
   }
-};
-
-// The ray through pixel centre (i, j), straight from the scene spec (kept
-// independent of the renderers' View class on purpose).
-inline void spec_ray(const Camera& c, uint32_t W, uint32_t H, int i, int j, glm::dvec3* o, glm::dvec3* d) {
-  const glm::dvec3 f = glm::normalize(c.target - c.eye);
-  const glm::dvec3 r = glm::normalize(glm::cross(f, c.up));
-  const glm::dvec3 u = glm::cross(r, f);
-  const double a = (i + 0.5) / W - 0.5, b = 0.5 - (j + 0.5) / H;
-  if (c.projection == Projection::Orthographic) {
-    *o = c.eye + a * c.height * W / H * r + b * c.height * u;
-    *d = f;
-  } else {
-    const double t = std::tan(c.fov_y * M_PI / 360.0);
-    *o = c.eye;
-    *d = glm::normalize(f + a * 2 * t * W / H * r + b * 2 * t * u);
+  // The largest difference of `img` from expected() over every pixel's ray
+  // (rs's camera and clip region; transparent background).
+  double worst(const Image& img, const RenderSettings& rs) const {
+    double w = 0;
+    for (uint32_t j = 0; j < rs.height; ++j)
+      for (uint32_t i = 0; i < rs.width; ++i) {
+        glm::dvec3 o, d;
+        spec_ray(rs.camera, rs.width, rs.height, int(i), int(j), &o, &d);
+        double want[4];
+        expected(o, d, want, rs.clip);
+        for (int k = 0; k < 4; ++k) w = std::max(w, std::abs(img.at(i, j)[k] - want[k]));
+      }
+    return w;
   }
-}
+};
 
 // The oblique camera the engine and reference tests share.
 inline RenderSettings settings(uint32_t W, uint32_t H, Projection proj, TransferFunction tf) {
