@@ -97,6 +97,8 @@ class MixedJob : public SceneJob {
     nlohmann::json j = volume_->stats(of(r).volume(), vf);
     j["geometry"] = geometry_->stats(of(r).geometry(), FrameReport{});
     j["geometry"]["renderer"] = in_.scene.with_spheres ? "spheres" : "surfaces";
+    if (in_.scene.clip_geometry)
+      j["geometry"]["clip"] = {{"triangles_dropped", in_.surface_clip.dropped}, {"triangles_cut", in_.surface_clip.cut}};
     j["time_ms"]["total"] = f.best_ms >= 0 ? f.best_ms : total_ms(r);
     return j;
   }

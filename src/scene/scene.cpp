@@ -308,7 +308,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     c.fail(std::string("invalid JSON: ") + e.what());
   }
   check_keys(c, j, "scene", {"mesh", "spheres", "surfaces", "image", "camera", "transfer_function", "shading", "render",
-                             "ground", "lights", "shadows", "ao", "clip", "crop"});
+                             "ground", "lights", "shadows", "ao", "clip", "crop", "clip_geometry"});
   Scene s;
   RenderSettings& rs = s.settings;
 
@@ -396,6 +396,13 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     s.has_transfer_function = true;
   }
 
+  if (j.contains("clip_geometry")) {
+    if (!j["clip_geometry"].is_boolean()) c.fail("clip_geometry must be true or false");
+    s.clip_geometry = j["clip_geometry"].get<bool>();
+    if (s.clip_geometry && !s.with_surfaces)
+      c.fail(s.with_spheres ? "clip_geometry cuts surfaces; spheres are not cut (drop it, or use surfaces)"
+                            : "clip_geometry is for a volume scene with surfaces (the planes always cut the volume)");
+  }
   if (j.contains("clip") || j.contains("crop")) {
     if (s.kind != SceneKind::Volume) c.fail(std::string("'") + (j.contains("clip") ? "clip" : "crop") + "' is for volume scenes");
     parse_clip(c, j, &rs.clip);

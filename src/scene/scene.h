@@ -51,6 +51,7 @@ struct Scene {
   // A volume scene with opaque geometry inside it (docs/scene.md, "Volumes
   // with geometry"): the spheres or surfaces parts above, drawn first.
   bool with_spheres = false, with_surfaces = false;
+  bool clip_geometry = false;  // the clip planes cut the surfaces too (not only the volume)
   bool has_camera = false;             // false: frame the mesh automatically
   bool has_transfer_function = false;  // false: default ramp over the scalar range
   bool mixed() const { return with_spheres || with_surfaces; }

@@ -10,6 +10,7 @@
 #include "geometry/tets/tet_mesh.h"
 #include "scene/scene.h"
 #include "geometry/spheres/sphere_set.h"
+#include "geometry/triangles/clip_triangles.h"
 #include "geometry/triangles/closed_solids.h"
 #include "geometry/triangles/triangle_mesh.h"
 
@@ -25,6 +26,7 @@ struct SceneInput {
   TriangleMesh surface;  // surface scenes: every surface, transformed, then the ground; point normals set
   uint64_t surface_polygons_split = 0, surface_elements_dropped = 0;
   SolidCounts surface_solids;     // before turning inward-wound solids outward (load_surfaces)
+  TriangleClipCounts surface_clip;  // clip_geometry: triangles the planes dropped or cut
   double ground_lowered_by = 0;   // automatic ground: gap below the lowest y (0: at it)
   double ms_load = 0;
 };

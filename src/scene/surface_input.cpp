@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/triangles/clip_triangles.h"
 #include "geometry/triangles/closed_solids.h"
 #include "geometry/triangles/ground_height.h"
 #include "geometry/triangles/io/mesh_surfaces.h"
@@ -43,6 +44,9 @@ void load_surfaces(SceneInput& in, const std::map<std::string, TriangleMesh>* da
     for (glm::dvec3& p : m.points) p = e.translate + rotate(e.scale * p, e.rotate_deg);
     append_mesh(all, m, uint32_t(i));
   }
+  // clip_geometry: the volume's planes cut the surfaces too, before anything
+  // is worked out of them (a cut solid is open: seen from both sides).
+  if (in.scene.clip_geometry) in.surface_clip = clip_triangles(all, in.scene.settings.clip);
   // Inward-wound solids would show their insides; open surfaces are drawn
   // from both sides instead (closed_solids.h).
   in.surface_solids = turn_solids_outward(all);

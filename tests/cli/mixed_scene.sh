@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# A volume with opaque geometry inside: spheres (flat), a triangle file, and
-# an isosurface of the mesh's scalar with its (scaled) boundary (lit, exact
-# shadows: the surfaces' reference) in a grid mesh, with a clip plane. render and reference
+# A volume with opaque geometry inside: spheres (flat), a triangle file (also
+# cut by the clip plane: clip_geometry), and an isosurface of the mesh's
+# scalar with its (scaled) boundary (lit, exact shadows: the surfaces'
+# reference) in a grid mesh, with a clip plane. render and reference
 # agree (float images, within 1e-5), --stats counts the rays the geometry
 # stopped and carries the geometry's own stats; --mpi gives the same image;
 # the geometry changes the image; translucent spheres in a volume are
@@ -23,7 +24,10 @@ printf '{"mesh": "%s", "surfaces": [{"path": "%s", "transform": {"scale": 0.6, "
   "$tmp/g.zsm" "$src/tests/data/surfaces/cube.off" "$common" > surfaces.json
 printf '{"mesh": "%s", "surfaces": [{"isosurface": [0.35], "color": [0.9, 0.8, 0.2]}, {"boundary": true,
   "transform": {"scale": 1.2}}], "shadows": {"mode": "exact"}, %s}' "$tmp/g.zsm" "$common" > iso.json
-for s in spheres surfaces iso; do
+printf '{"mesh": "%s", "surfaces": [{"path": "%s", "transform": {"scale": 0.6, "translate": [-0.3, -0.3, 0]}}],
+  "shadows": {"mode": "exact"}, "clip_geometry": true, %s}' "$tmp/g.zsm" "$src/tests/data/surfaces/cube.off" "$common" \
+  > cut.json
+for s in spheres surfaces iso cut; do
   "$zsweep" render $s.json -o $s.exr --stats $s.st.json >/dev/null || { echo "FAIL: render $s"; fail=1; continue; }
   "$zsweep" reference $s.json -o $s.ref.exr --stats $s.ref.json >/dev/null || { echo "FAIL: reference $s"; fail=1; continue; }
   max=$("$zsweep" compare $s.exr $s.ref.exr --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["max_abs"])')
@@ -43,6 +47,17 @@ if command -v mpirun >/dev/null; then  # sort-first across two ranks: the same i
   d=$("$zsweep" compare mpi.exr surfaces.exr --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["max_abs"])')
   [ "$d" = "0" ] || [ "$d" = "0.0" ] || { echo "FAIL: --mpi changed the mixed image (max abs $d)"; fail=1; }
 fi
+python3 - cut.st.json <<'PY' || fail=1
+import json, sys
+c = json.load(open(sys.argv[1]))["geometry"].get("clip", {})
+if not (c.get("triangles_cut", 0) > 0):
+    print("FAIL: clip_geometry cut no triangle:", c); sys.exit(1)
+PY
+cmp -s cut.exr surfaces.exr && { echo "FAIL: clip_geometry changed nothing"; fail=1; }
+printf '{"mesh": "%s", "spheres": "%s", "clip_geometry": true, %s}' "$tmp/g.zsm" "$tmp/s.sph" "$common" > cs.json
+"$zsweep" render cs.json -o cs.png >out.txt 2>err.txt; rc=$?
+[ $rc -ne 0 ] && grep -q "clip_geometry cuts surfaces; spheres are not cut" err.txt \
+  || { echo "FAIL: clip_geometry with spheres: exit $rc: $(cat err.txt)"; fail=1; }
 printf '{"mesh": "%s", %s}' "$tmp/g.zsm" "$common" > volume.json
 "$zsweep" render volume.json -o volume.exr >/dev/null || fail=1
 cmp -s volume.exr spheres.exr && { echo "FAIL: the spheres changed nothing"; fail=1; }

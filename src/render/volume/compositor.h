@@ -28,8 +28,9 @@ class Compositor {
   // when it fills or on flush().
   // held: cell data — each segment's scalar is its front fragment's, held
   // over the whole segment (the tet's own value; face_classes.h). clip: per
-  // pixel, the depth interval the clip planes keep (two floats, in the
-  // fragments' depth units; null: no clip planes); segments are cut to it.
+  // pixel, the depth interval the clip planes keep, ending at the opaque
+  // geometry under the volume (two floats, in the fragments' depth units;
+  // null: neither); segments are cut to it.
   Compositor(const View& view, const SegmentIntegrator& integ, double et_transmittance, SegmentBatch* batch,
              PixelRecord* records, PixelLight* lights, bool held = false, const float* clip = nullptr)
       : view_(view), integ_(integ), et_(et_transmittance), batch_(batch), records_(records), lights_(lights),
