@@ -63,7 +63,7 @@ expect unknown_format 1 "^zsweep: error: $tmp/o.xyz: unsupported image format" -
 # Scene files: syntax, unknown keys, transfer functions.
 expect json_syntax 1 'syn.json: invalid JSON: .*parse error at line 2, column 2[0-9]' -"$tmp/o.png" -- \
   render "$(scene syn $'{"mesh": "m.off",\n "image": {"width": 3,}}')" -o "$tmp/o.png"
-expect unknown_key 1 "uk.json: unknown key 'scene.imgae' \(allowed: mesh, spheres, surfaces, image, camera, transfer_function, shading, render, ground, lights, shadows, ao, clip, crop\)$" \
+expect unknown_key 1 "uk.json: unknown key 'scene.imgae' \(allowed: mesh, spheres, surfaces, image, camera, transfer_function, shading, render, ground, lights, shadows, ao, clip, crop, clip_geometry\)$" \
   -"$tmp/o.png" -- render "$(scene uk '{"mesh": "'"$cube"'", "imgae": {}}')" -o "$tmp/o.png"
 expect unknown_nested_key 1 "unknown key 'camera.fov'" -"$tmp/o.png" -- \
   render "$(scene uk2 '{"mesh": "'"$cube"'", "camera": {"fov": 30}}')" -o "$tmp/o.png"

@@ -49,7 +49,7 @@ TEST(Scene, ParsesEveryKey) {
 
 TEST(Scene, RejectsBadInputWithOneLine) {
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "camrea": {}})"),
-            "s.json: unknown key 'scene.camrea' (allowed: mesh, spheres, surfaces, image, camera, transfer_function, shading, render, ground, lights, shadows, ao, clip, crop)");
+            "s.json: unknown key 'scene.camrea' (allowed: mesh, spheres, surfaces, image, camera, transfer_function, shading, render, ground, lights, shadows, ao, clip, crop, clip_geometry)");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"scan": "zigzag"}})"),
             "s.json: render.scan must be \"bbox\", \"bconvert\" or \"span\"");
   EXPECT_EQ(error_of(R"({"mesh": "a.off", "render": {"precision": "half"}})"),
