@@ -1,6 +1,7 @@
 #include "app/reference_scene.h"
 
 #include <cstdarg>
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
@@ -91,22 +92,24 @@ struct UnderImage {
   std::vector<float> z;
   nlohmann::json stats;
 };
-UnderImage reference_geometry(SceneInput& in) {
+UnderImage reference_spheres_under(SceneInput& in) {
+  UnderImage u;
+  const ReferenceImage r = reference_spheres(in, 0);
+  const size_t C = r.names.size(), n = size_t(r.width) * r.height;
+  u.rgba = Image(r.width, r.height);
+  u.z.resize(n);
+  for (size_t p = 0; p < n; ++p) {
+    for (int k = 0; k < 4; ++k) u.rgba.rgba[p * 4 + size_t(k)] = r.pixels[p * C + size_t(k)];
+    u.z[p] = r.pixels[p * C + 4];
+  }
+  u.stats = r.stats;
+  u.stats["renderer"] = "spheres (Embree)";
+  return u;
+}
+
+UnderImage reference_surfaces_under(SceneInput& in) {
   UnderImage u;
   const RenderSettings& rs = in.scene.settings;
-  if (in.scene.with_spheres) {
-    const ReferenceImage r = reference_spheres(in, 0);
-    const size_t C = r.names.size(), n = size_t(r.width) * r.height;
-    u.rgba = Image(r.width, r.height);
-    u.z.resize(n);
-    for (size_t p = 0; p < n; ++p) {
-      for (int k = 0; k < 4; ++k) u.rgba.rgba[p * 4 + size_t(k)] = r.pixels[p * C + size_t(k)];
-      u.z[p] = r.pixels[p * C + 4];
-    }
-    u.stats = r.stats;
-    u.stats["renderer"] = "spheres (Embree)";
-    return u;
-  }
   in.scene.surfaces.shadows.mode = ShadowMode::Exact;  // shadow rays, not maps: the surfaces' reference
   std::unique_ptr<SceneJob> job = make_surface_job(in);
   ImageSink sink(job->grid());
@@ -117,6 +120,21 @@ UnderImage reference_geometry(SceneInput& in) {
   u.stats = job->stats(*r, FrameReport{});
   u.stats["renderer"] = "surfaces (the renderer, exact shadows)";
   return u;
+}
+
+// Spheres and/or surfaces; with both, each pixel the nearer (as the render's
+// mixed job keeps it).
+UnderImage reference_geometry(SceneInput& in) {
+  if (!in.scene.with_surfaces) return reference_spheres_under(in);
+  if (!in.scene.with_spheres) return reference_surfaces_under(in);
+  UnderImage a = reference_spheres_under(in), b = reference_surfaces_under(in);
+  for (size_t p = 0; p < a.z.size(); ++p)
+    if (b.z[p] < a.z[p]) {
+      a.z[p] = b.z[p];
+      std::copy_n(&b.rgba.rgba[p * 4], 4, &a.rgba.rgba[p * 4]);
+    }
+  a.stats = {{"renderer", "spheres and surfaces"}, {"spheres", a.stats}, {"surfaces", b.stats}};
+  return a;
 }
 
 ReferenceImage reference_volume(SceneInput& in) {

@@ -313,9 +313,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   RenderSettings& rs = s.settings;
 
   const bool mesh = j.contains("mesh");
-  if (j.contains("spheres") && j.contains("surfaces"))
-    c.fail(mesh ? "a volume scene holds 'spheres' or 'surfaces' beside its mesh, not both"
-                : "a scene has one of 'mesh', 'spheres' or 'surfaces' (or a 'mesh' with one of the others)");
+  if (j.contains("spheres") && j.contains("surfaces") && !mesh)
+    c.fail("a scene has one of 'mesh', 'spheres' or 'surfaces' (or a 'mesh' with either or both of the others)");
   if (!mesh && !j.contains("spheres") && !j.contains("surfaces"))
     c.fail("missing 'mesh' (volume), 'spheres' or 'surfaces'");
   if (!j.contains("surfaces"))
@@ -325,15 +324,24 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   if (mesh && j.contains("render") && j["render"].is_object() && j["render"].contains("mode") && j.contains("spheres"))
     c.fail("spheres inside a volume are opaque: translucent spheres (render.mode) would need the volume's segments "
            "sorted against every sphere layer, which zsweep does not do");
-  if (j.contains("surfaces")) {
-    s.kind = mesh ? SceneKind::Volume : SceneKind::Surfaces;
-    s.with_surfaces = mesh;
-    if (!mesh && j.contains("transfer_function")) c.fail("'transfer_function' is not for surface scenes");
-    parse_surface_blocks(c, j, &s, !mesh);
+  if (mesh && (j.contains("surfaces") || j.contains("spheres"))) {
+    // A volume with geometry inside: `render` is the volume's. With both
+    // kinds, `shading` is shared (light_direction is the spheres' own).
+    s.with_surfaces = j.contains("surfaces");
+    s.with_spheres = j.contains("spheres");
+    if (s.with_surfaces) {
+      json js = j;
+      if (s.with_spheres && js.contains("shading") && js["shading"].is_object()) js["shading"].erase("light_direction");
+      parse_surface_blocks(c, js, &s, false);
+    }
+    if (s.with_spheres) parse_spheres_block(c, j, &s, false);
+  } else if (j.contains("surfaces")) {
+    s.kind = SceneKind::Surfaces;
+    if (j.contains("transfer_function")) c.fail("'transfer_function' is not for surface scenes");
+    parse_surface_blocks(c, j, &s);
   } else if (j.contains("spheres")) {
-    s.kind = mesh ? SceneKind::Volume : SceneKind::Spheres;
-    s.with_spheres = mesh;
-    parse_spheres_block(c, j, &s, !mesh);
+    s.kind = SceneKind::Spheres;
+    parse_spheres_block(c, j, &s);
   } else if (j.contains("shading")) {
     c.fail("'shading' is for sphere and surface scenes");
   }
@@ -399,8 +407,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   if (j.contains("clip_geometry")) {
     if (!j["clip_geometry"].is_boolean()) c.fail("clip_geometry must be true or false");
     s.clip_geometry = j["clip_geometry"].get<bool>();
-    if (s.clip_geometry && !s.with_surfaces)
-      c.fail(s.with_spheres ? "clip_geometry cuts surfaces; spheres are not cut (drop it, or use surfaces)"
+    if (s.clip_geometry && (s.with_spheres || !s.with_surfaces))
+      c.fail(s.with_spheres ? "clip_geometry cuts surfaces; spheres are not cut (drop it, or the spheres)"
                             : "clip_geometry is for a volume scene with surfaces (the planes always cut the volume)");
   }
   if (j.contains("clip") || j.contains("crop")) {

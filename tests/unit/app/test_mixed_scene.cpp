@@ -95,10 +95,17 @@ TEST(MixedScene, SceneRules) {
   EXPECT_EQ(error_of(R"({"mesh": "m.off", "spheres": "s.sph", "render": {"mode": "weighted"}})"),
             "s.json: spheres inside a volume are opaque: translucent spheres (render.mode) would need the volume's "
             "segments sorted against every sphere layer, which zsweep does not do");
-  EXPECT_EQ(error_of(R"({"mesh": "m.off", "spheres": "s.sph", "surfaces": ["c.obj"]})"),
-            "s.json: a volume scene holds 'spheres' or 'surfaces' beside its mesh, not both");
   EXPECT_EQ(error_of(R"({"spheres": "s.sph", "surfaces": ["c.obj"]})"),
-            "s.json: a scene has one of 'mesh', 'spheres' or 'surfaces' (or a 'mesh' with one of the others)");
+            "s.json: a scene has one of 'mesh', 'spheres' or 'surfaces' (or a 'mesh' with either or both of the "
+            "others)");
+  EXPECT_EQ(error_of(R"({"mesh": "m.off", "spheres": "s.sph", "surfaces": ["c.obj"], "clip_geometry": true})"),
+            "s.json: clip_geometry cuts surfaces; spheres are not cut (drop it, or the spheres)");
+  const Scene both = parse_scene(R"({"mesh": "m.off", "spheres": "s.sph", "surfaces": [{"boundary": true}],
+    "shading": {"model": "phong", "light_direction": [0, -1, 0], "ambient": 0.4}})", "s.json", "");
+  EXPECT_TRUE(both.with_spheres && both.with_surfaces);
+  EXPECT_EQ(both.spheres.shading.ambient, 0.4);  // shared
+  EXPECT_EQ(both.surfaces.shading.ambient, 0.4);
+  EXPECT_EQ(both.surfaces.surfaces[0].source, SurfaceSource::Boundary);
   const Scene s = parse_scene(R"({"mesh": "m.off", "surfaces": ["c.obj"], "lights": [{"type": "directional",
     "direction": [0, -1, 0]}], "render": {"scan": "bbox"}, "transfer_function": {"color": [[0, 1, 1, 1]],
     "opacity": [[0, 0.5]]}})", "s.json", "");

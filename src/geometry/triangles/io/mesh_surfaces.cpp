@@ -2,7 +2,6 @@
 
 #include <vtkCellDataToPointData.h>
 #include <vtkContourFilter.h>
-#include <vtkGeometryFilter.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -12,23 +11,36 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glm/geometric.hpp>
+
 #include "base/util/file_error.h"
 #include "geometry/tets/io/vtk_capture.h"
 #include "geometry/tets/io/vtk_tet_grid.h"
+#include "geometry/tets/topology.h"
 #include "geometry/triangles/io/polydata_triangles.h"
 
 namespace zs {
 
 TriangleMesh boundary_surface(const TetMesh& m, const std::string& name) {
-  detail::VtkMessageCapture capture;
-  const vtkSmartPointer<vtkUnstructuredGrid> grid = vtk_tet_grid(m, name);
-  auto f = vtkSmartPointer<vtkGeometryFilter>::New();
-  capture.watch(f);
-  f->SetInputData(grid);
-  f->Update();
-  if (capture.has_error()) throw FileError(name, "cannot extract the boundary: " + capture.first_error());
-  if (f->GetOutput()->GetNumberOfPolys() == 0) throw FileError(name, "the mesh has no boundary faces");
-  return triangles_of_polydata(f->GetOutput(), name + " (boundary)", nullptr);
+  // The topology's boundary faces, each wound outward (away from its tet's
+  // fourth vertex). Not vtkGeometryFilter: VTK 9.1's leaks under ASan, and
+  // the faces are already known here.
+  const Topology topo = build_topology(m);
+  TriangleMesh t;
+  t.points = m.points;
+  for (uint32_t f = 0; f < topo.num_faces(); ++f) {
+    if (topo.tet1(f) != kNoTet || topo.tet_degenerate[topo.tet0(f)]) continue;
+    const auto fv = topo.face(f);
+    uint32_t opp = m.tets[topo.tet0(f)][0];
+    for (uint32_t v : m.tets[topo.tet0(f)])
+      if (v != fv[0] && v != fv[1] && v != fv[2]) opp = v;
+    const glm::dvec3 a = m.points[fv[0]];
+    const bool inward = glm::dot(glm::cross(m.points[fv[1]] - a, m.points[fv[2]] - a), m.points[opp] - a) > 0;
+    t.tris.push_back(inward ? std::array<uint32_t, 3>{fv[0], fv[2], fv[1]} : std::array<uint32_t, 3>{fv[0], fv[1], fv[2]});
+  }
+  if (t.tris.empty()) throw FileError(name, "the mesh has no boundary faces");
+  t.surface.assign(t.tris.size(), 0);
+  return t;
 }
 
 TriangleMesh isosurfaces(const TetMesh& m, const std::vector<double>& values, const std::string& name) {

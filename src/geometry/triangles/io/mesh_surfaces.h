@@ -1,7 +1,7 @@
 // Surfaces made of a tet mesh, for the opaque geometry inside a volume
-// (docs/scene.md, "Volumes with geometry"), through VTK's filters: the
-// mesh's boundary (vtkGeometryFilter) and isosurfaces of its scalar
-// (vtkContourFilter; cell data are averaged onto the points first, as
+// (docs/scene.md, "Volumes with geometry"): the mesh's boundary (its
+// topology's boundary faces, wound outward) and isosurfaces of its scalar
+// (VTK's vtkContourFilter; cell data are averaged onto the points first, as
 // vtkCellDataToPointData does, since a contour needs a field at the points).
 #pragma once
 
